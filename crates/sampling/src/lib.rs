@@ -1,0 +1,1 @@
+//! Random numbers and sample mappings for Monte Carlo rendering.
