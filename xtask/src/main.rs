@@ -15,7 +15,9 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Some("check") => {
-            println!("check: the statistical checks run through `cargo test --release --workspace` for now");
+            println!(
+                "check: the statistical checks run through `cargo test --release --workspace` for now"
+            );
             ExitCode::SUCCESS
         }
         _ => {
