@@ -1,0 +1,16 @@
+//! Light transport over a [`World`]: the reference path tracer (the oracle every other
+//! configuration is tested against) and the path tracer with every variance-reduction technique
+//! as a switch.
+
+mod counters;
+mod light_choice;
+pub mod path;
+pub mod reference;
+mod settings;
+mod uniform_direction;
+mod world;
+
+pub use counters::RayCounters;
+pub use path::PathIntegrator;
+pub use settings::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+pub use world::{MaterialId, SurfaceHit, World};

@@ -1,0 +1,112 @@
+//! Choosing a light and a point on it for next event estimation: by a fixed probability mass
+//! function (uniform or power), or by resampled importance sampling over several candidates.
+
+use crate::SurfaceHit;
+use crate::settings::LightSelectionMode;
+use glam::{Vec2, Vec3};
+use lights::{Light, LightSample, LightSelector, mean_rgb};
+use sampling::reservoir::Reservoir;
+use sampling::{Rng, rng::wang_hash};
+
+/// A light sample chosen for a shadow ray, with the BSDF already evaluated towards it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ChosenLight {
+    /// The sampled direction and radiance.
+    pub sample: LightSample,
+    /// f(wo, wi) · |cos θi| towards the sample, RGB.
+    pub f_cos: Vec3,
+    /// Factor that makes `f_cos · radiance · weight` an unbiased estimate of direct light:
+    /// 1 / (pmf · pdf) for a fixed pmf, the RIS contribution weight W for RIS.
+    pub weight: f32,
+    /// The light strategy's density per steradian used in MIS weights: pmf · pdf_solid_angle of
+    /// the selection pmf (for RIS, of its power-proportional candidate source).
+    pub pdf_for_mis: f32,
+}
+
+/// Picks a light and a point on it as `mode` says, from the shading point of `surface` with
+/// outgoing direction `wo` (local frame). `u_choice` and `u_point` come from the sampler; RIS
+/// derives the randomness for its candidates from them.
+pub(crate) fn choose_light(
+    mode: LightSelectionMode,
+    selector: &LightSelector,
+    lights: &[Light],
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+    u_choice: f32,
+    u_point: Vec2,
+) -> Option<ChosenLight> {
+    match mode {
+        LightSelectionMode::Uniform | LightSelectionMode::Power => {
+            let (index, pmf) = selector.select(u_choice);
+            let candidate = evaluate(&lights[index], pmf, surface, wo, u_point)?;
+            let pdf = pmf * candidate.sample.pdf_solid_angle;
+            Some(ChosenLight {
+                weight: 1.0 / pdf,
+                pdf_for_mis: pdf,
+                ..candidate
+            })
+        }
+        LightSelectionMode::Ris { candidates } => {
+            resample(candidates, selector, lights, surface, wo, u_choice, u_point)
+        }
+    }
+}
+
+/// One candidate: the light sample and the BSDF towards it, `None` if it carries nothing.
+fn evaluate(
+    light: &Light,
+    pmf: f32,
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+    u_point: Vec2,
+) -> Option<ChosenLight> {
+    let sample = light.sample_li(surface.hit.p, u_point)?;
+    let wi = surface.frame.to_local(sample.wi);
+    let f_cos = surface.bsdf.eval(wo, wi) * wi.z.abs();
+    if f_cos == Vec3::ZERO || sample.radiance == Vec3::ZERO {
+        return None;
+    }
+    Some(ChosenLight {
+        sample,
+        f_cos,
+        weight: 0.0,
+        pdf_for_mis: pmf * sample.pdf_solid_angle,
+    })
+}
+
+/// RIS: `count` candidates from the power-proportional source, one kept by a weighted reservoir
+/// with target p̂ = mean(f · |cos| · L) (the unshadowed contribution), weighted by
+/// W = Σ w / (M · p̂(y)).
+fn resample(
+    count: u32,
+    source: &LightSelector,
+    lights: &[Light],
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+    u_choice: f32,
+    u_point: Vec2,
+) -> Option<ChosenLight> {
+    let seed = wang_hash(u_choice.to_bits())
+        ^ wang_hash(u_point.x.to_bits()).rotate_left(11)
+        ^ wang_hash(u_point.y.to_bits()).rotate_left(22);
+    let mut rng = Rng::new(seed);
+    let mut reservoir = Reservoir::new();
+    for _ in 0..count.max(1) {
+        let (index, pmf) = source.select(rng.next_f32());
+        let u = Vec2::new(rng.next_f32(), rng.next_f32());
+        let u_select = rng.next_f32();
+        let Some(candidate) = evaluate(&lights[index], pmf, surface, wo, u) else {
+            reservoir.update(None, 0.0, u_select);
+            continue;
+        };
+        let target = mean_rgb(candidate.f_cos * candidate.sample.radiance);
+        reservoir.update(
+            Some((candidate, target)),
+            target / candidate.pdf_for_mis,
+            u_select,
+        );
+    }
+    let (candidate, target) = (*reservoir.selected()?)?;
+    let weight = reservoir.contribution_weight(target);
+    (weight > 0.0).then_some(ChosenLight { weight, ..candidate })
+}

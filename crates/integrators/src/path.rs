@@ -1,0 +1,244 @@
+//! The variance-reduction path tracer: every technique of the lecture as a switch in
+//! [`PathSettings`], each switch unbiased on its own and in any combination.
+//!
+//! Sampler dimensions per vertex, in this order and only for the techniques switched on (so a
+//! configuration consumes a fixed, documented sequence): light choice (1D) and light point (2D)
+//! with next event estimation; BSDF lobe (1D) and BSDF direction (2D) always; roulette (1D) with
+//! Russian roulette.
+
+use crate::light_choice::choose_light;
+use crate::reference::UNBOUNDED_DEPTH_CAP;
+use crate::settings::{LightSelectionMode, Mis, PathSettings};
+use crate::uniform_direction::{sample_uniform_direction, uniform_direction_pdf};
+use crate::{RayCounters, SurfaceHit, World};
+use geometry::Ray;
+use glam::{Vec2, Vec3};
+use lights::{LightSelection, LightSelector};
+use sampling::Sampler;
+use sampling::mis::{balance_heuristic, power_heuristic};
+
+/// The path tracer configured for one world: the settings and the light selection table.
+#[derive(Clone, Debug)]
+pub struct PathIntegrator {
+    settings: PathSettings,
+    selector: Option<LightSelector>,
+}
+
+/// What the walk remembers about the vertex it just left, to weight emission it finds.
+#[derive(Clone, Copy, Debug)]
+struct PreviousVertex {
+    p: Vec3,
+    /// Density per steradian of the direction that was sampled there.
+    pdf_dir: f32,
+    /// True at the camera and after a delta bounce: light sampling could not have found this
+    /// emission, so it counts in full.
+    delta: bool,
+}
+
+impl PathIntegrator {
+    /// The integrator for `world` with `settings`.
+    pub fn new(world: &World, settings: PathSettings) -> Self {
+        let selection = match settings.light_selection {
+            LightSelectionMode::Uniform => LightSelection::Uniform,
+            LightSelectionMode::Power | LightSelectionMode::Ris { .. } => LightSelection::Power,
+        };
+        Self {
+            settings,
+            selector: LightSelector::new(world.lights(), selection),
+        }
+    }
+
+    /// The settings this integrator runs with.
+    pub fn settings(&self) -> &PathSettings {
+        &self.settings
+    }
+
+    /// Radiance (W m⁻² sr⁻¹, RGB) arriving at the camera along `camera_ray`: one path's estimate.
+    pub fn radiance(
+        &self,
+        world: &World,
+        camera_ray: Ray,
+        sampler: &mut impl Sampler,
+        counters: &mut RayCounters,
+    ) -> Vec3 {
+        let settings = &self.settings;
+        let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
+        let mut radiance = Vec3::ZERO;
+        let mut throughput = Vec3::ONE;
+        let mut ray = camera_ray;
+        let mut previous = PreviousVertex {
+            p: ray.origin,
+            pdf_dir: 0.0,
+            delta: true,
+        };
+        for depth in 1..=max_depth {
+            let hidden = depth == 1 && settings.hide_emitters;
+            let Some(surface) = world.intersect(&ray, counters) else {
+                let background = world.background();
+                if !hidden && background != Vec3::ZERO {
+                    let weight = self.emission_weight(&previous, world.environment(), || {
+                        world.environment().map_or(0.0, |e| {
+                            world.lights()[e as usize].pdf_li_environment()
+                        })
+                    });
+                    radiance += throughput * background * weight;
+                }
+                break;
+            };
+            if !hidden && let Some(light) = surface.light {
+                let emitted = world.emitted(&surface, -ray.dir);
+                if emitted != Vec3::ZERO {
+                    let weight = self.emission_weight(&previous, Some(light), || {
+                        world.lights()[light as usize].pdf_li_surface(
+                            previous.p,
+                            surface.hit.p,
+                            surface.hit.ng,
+                        )
+                    });
+                    radiance += throughput * emitted * weight;
+                }
+            }
+            if depth == max_depth {
+                break;
+            }
+            let wo = surface.frame.to_local(-ray.dir);
+
+            if settings.sample_lights {
+                let u_choice = sampler.next_1d();
+                let u_point = sampler.next_2d();
+                if !surface.bsdf.is_delta() {
+                    radiance += throughput
+                        * self.direct_light(world, &surface, wo, u_choice, u_point, counters);
+                }
+            }
+
+            let u_lobe = sampler.next_1d();
+            let u_dir = sampler.next_2d();
+            let Some((wi, weight, pdf_dir, delta)) = self.next_direction(&surface, wo, u_lobe, u_dir)
+            else {
+                break;
+            };
+            throughput *= weight;
+            if let Some(roulette) = settings.russian_roulette {
+                let u_survive = sampler.next_1d();
+                if depth >= roulette.start_depth {
+                    let survival = throughput.max_element().clamp(0.0, 1.0);
+                    if u_survive >= survival {
+                        break;
+                    }
+                    throughput /= survival;
+                }
+            }
+            if throughput == Vec3::ZERO {
+                break;
+            }
+            previous = PreviousVertex {
+                p: surface.hit.p,
+                pdf_dir,
+                delta,
+            };
+            ray = Ray::spawn(surface.hit.p, surface.hit.ng, surface.frame.to_world(wi));
+        }
+        radiance
+    }
+
+    /// Direct light at `surface` by one shadow ray, MIS-weighted if MIS is on.
+    fn direct_light(
+        &self,
+        world: &World,
+        surface: &SurfaceHit<'_>,
+        wo: Vec3,
+        u_choice: f32,
+        u_point: Vec2,
+        counters: &mut RayCounters,
+    ) -> Vec3 {
+        let Some(selector) = &self.selector else {
+            return Vec3::ZERO;
+        };
+        let Some(chosen) = choose_light(
+            self.settings.light_selection,
+            selector,
+            world.lights(),
+            surface,
+            wo,
+            u_choice,
+            u_point,
+        ) else {
+            return Vec3::ZERO;
+        };
+        let sample = chosen.sample;
+        let visible = if sample.distance.is_finite() {
+            world.unoccluded(surface.hit.p, surface.hit.ng, sample.p_light, sample.n_light, counters)
+        } else {
+            world.escapes(surface.hit.p, surface.hit.ng, sample.wi, counters)
+        };
+        if !visible {
+            return Vec3::ZERO;
+        }
+        let mis_weight = if sample.is_delta {
+            1.0
+        } else {
+            let wi = surface.frame.to_local(sample.wi);
+            self.heuristic(chosen.pdf_for_mis, self.direction_pdf(surface, wo, wi))
+        };
+        chosen.f_cos * sample.radiance * (chosen.weight * mis_weight)
+    }
+
+    /// The next direction: (wi local, throughput factor f·|cos|/pdf, pdf per steradian, delta).
+    fn next_direction(
+        &self,
+        surface: &SurfaceHit<'_>,
+        wo: Vec3,
+        u_lobe: f32,
+        u_dir: Vec2,
+    ) -> Option<(Vec3, Vec3, f32, bool)> {
+        let bsdf = surface.bsdf;
+        if self.settings.sample_bsdf || bsdf.is_delta() {
+            let s = bsdf.sample(wo, u_lobe, u_dir)?;
+            Some((s.wi, s.f * s.wi.z.abs() / s.pdf_solid_angle, s.pdf_solid_angle, s.is_delta))
+        } else {
+            let (wi, pdf) = sample_uniform_direction(bsdf, wo, u_dir);
+            let f = bsdf.eval(wo, wi);
+            Some((wi, f * wi.z.abs() / pdf, pdf, false))
+        }
+    }
+
+    /// Density per steradian with which [`Self::next_direction`] produces `wi`.
+    fn direction_pdf(&self, surface: &SurfaceHit<'_>, wo: Vec3, wi: Vec3) -> f32 {
+        if self.settings.sample_bsdf {
+            surface.bsdf.pdf_solid_angle(wo, wi)
+        } else {
+            uniform_direction_pdf(surface.bsdf, wo, wi)
+        }
+    }
+
+    /// Weight of emission found by the walk: 1 where light sampling could not have found it,
+    /// 0 where it did and MIS is off, the MIS weight of the BSDF strategy otherwise.
+    fn emission_weight(
+        &self,
+        previous: &PreviousVertex,
+        light: Option<u32>,
+        pdf_light_solid_angle: impl FnOnce() -> f32,
+    ) -> f32 {
+        if !self.settings.sample_lights || previous.delta {
+            return 1.0;
+        }
+        let (Some(selector), Some(light)) = (&self.selector, light) else {
+            return 1.0;
+        };
+        if self.settings.mis == Mis::Off {
+            return 0.0;
+        }
+        let pdf_light = selector.pmf(light as usize) * pdf_light_solid_angle();
+        self.heuristic(previous.pdf_dir, pdf_light)
+    }
+
+    /// The MIS weight of a sample with density `pdf_f` against the other strategy's `pdf_g`.
+    fn heuristic(&self, pdf_f: f32, pdf_g: f32) -> f32 {
+        match self.settings.mis {
+            Mis::Off => 1.0,
+            Mis::Balance => balance_heuristic(1.0, pdf_f, 1.0, pdf_g),
+            Mis::Power => power_heuristic(1.0, pdf_f, 1.0, pdf_g),
+        }
+    }
+}

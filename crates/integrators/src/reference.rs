@@ -1,0 +1,93 @@
+//! The reference path tracer: no tricks, short and obviously right.
+//!
+//! Directions are sampled uniformly over the hemisphere on the side the path arrived from (the
+//! whole sphere for a BSDF that transmits; delta lobes by their delta), emission is counted where a path hits it, and paths end at
+//! `max_depth` vertices. No next event estimation, no MIS, no Russian roulette. Delta lights
+//! (points) cannot be hit by a random ray, so each vertex connects to them explicitly: the only
+//! unbiased way to see them. Every other configuration is tested against this one.
+
+use crate::{RayCounters, World};
+use geometry::Ray;
+use glam::{Vec2, Vec3};
+use crate::uniform_direction::sample_uniform_direction;
+use sampling::Sampler;
+
+/// Paths with an unbounded `max_depth` stop after this many vertices: the reference has no
+/// roulette, and the energy left after this many bounces is far below any test's noise.
+pub const UNBOUNDED_DEPTH_CAP: u32 = 256;
+
+/// What the reference integrator is asked to do.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReferenceSettings {
+    /// Largest number of path vertices after the camera (Mitsuba's `max_depth`: 1 shows only
+    /// emitters seen directly, 2 adds direct lighting); `None` is unbounded.
+    pub max_depth: Option<u32>,
+    /// Hide emitters (and the environment) seen directly by the camera.
+    pub hide_emitters: bool,
+}
+
+/// Radiance (W m⁻² sr⁻¹, RGB) arriving at the camera along `ray`, one path's estimate.
+///
+/// Per vertex it draws, in this order, one 1D sample (delta lobe choice) and one 2D sample
+/// (direction), whether or not they are used, so the dimension order is fixed.
+pub fn radiance(
+    world: &World,
+    camera_ray: Ray,
+    sampler: &mut impl Sampler,
+    settings: &ReferenceSettings,
+    counters: &mut RayCounters,
+) -> Vec3 {
+    let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
+    let mut radiance = Vec3::ZERO;
+    let mut throughput = Vec3::ONE;
+    let mut ray = camera_ray;
+    for depth in 1..=max_depth {
+        let hidden = depth == 1 && settings.hide_emitters;
+        let Some(surface) = world.intersect(&ray, counters) else {
+            if !hidden {
+                radiance += throughput * world.background();
+            }
+            break;
+        };
+        if !hidden {
+            radiance += throughput * world.emitted(&surface, -ray.dir);
+        }
+        let u_lobe = sampler.next_1d();
+        let u_dir = sampler.next_2d();
+        if depth == max_depth {
+            break;
+        }
+        let p = surface.hit.p;
+        let ng = surface.hit.ng;
+        let wo = surface.frame.to_local(-ray.dir);
+
+        for &light_index in world.delta_lights() {
+            let light = &world.lights()[light_index as usize];
+            let Some(s) = light.sample_li(p, Vec2::ZERO) else {
+                continue;
+            };
+            let wi = surface.frame.to_local(s.wi);
+            let f = surface.bsdf.eval(wo, wi);
+            if f != Vec3::ZERO && world.unoccluded(p, ng, s.p_light, s.n_light, counters) {
+                radiance += throughput * f * wi.z.abs() * s.radiance / s.pdf_solid_angle;
+            }
+        }
+
+        let (wi, weight) = if surface.bsdf.is_delta() {
+            let Some(s) = surface.bsdf.sample(wo, u_lobe, u_dir) else {
+                break;
+            };
+            (s.wi, s.f * s.wi.z.abs() / s.pdf_solid_angle)
+        } else {
+            let (wi, pdf) = sample_uniform_direction(surface.bsdf, wo, u_dir);
+            let f = surface.bsdf.eval(wo, wi);
+            (wi, f * wi.z.abs() / pdf)
+        };
+        throughput *= weight;
+        if throughput == Vec3::ZERO {
+            break;
+        }
+        ray = Ray::spawn(p, ng, surface.frame.to_world(wi));
+    }
+    radiance
+}

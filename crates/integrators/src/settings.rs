@@ -1,0 +1,97 @@
+//! The switches of the variance-reduction path tracer, one struct with affirmative names.
+
+/// How light-sampled and BSDF-sampled estimates of the same light are combined.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mis {
+    /// No combination: with light sampling on, emission found by BSDF sampling is ignored
+    /// except where light sampling could not have found it (first hit, after a delta bounce).
+    Off,
+    /// Veach's balance heuristic.
+    Balance,
+    /// Veach's power heuristic with exponent 2.
+    Power,
+}
+
+/// How the light for a next-event-estimation sample is chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSelectionMode {
+    /// Every light equally likely.
+    Uniform,
+    /// Proportional to emitted power.
+    Power,
+    /// Resampled importance sampling: `candidates` lights and points are drawn
+    /// power-proportionally, and one is kept with probability proportional to its unshadowed
+    /// contribution (a weighted reservoir), weighted by the unbiased contribution weight.
+    Ris {
+        /// Number of candidates M (at least 1).
+        candidates: u32,
+    },
+}
+
+/// Russian roulette on the indirect part of the path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RussianRoulette {
+    /// First path vertex (1 = the camera ray's hit) after which paths may be terminated.
+    pub start_depth: u32,
+}
+
+/// Every switch of [`crate::path`]. The default is the plain BSDF-sampled path tracer with
+/// Mitsuba's roulette start depth; turn techniques on one by one to measure each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PathSettings {
+    /// Largest number of path vertices after the camera (Mitsuba's `max_depth`); `None` is
+    /// unbounded (then roulette should be on, or paths run to the safety cap).
+    pub max_depth: Option<u32>,
+    /// Hide emitters (and the environment) seen directly by the camera.
+    pub hide_emitters: bool,
+    /// Next event estimation: a shadow ray to a chosen light at every non-delta vertex.
+    pub sample_lights: bool,
+    /// Importance-sample the BSDF for the next direction; when off, directions are uniform over
+    /// the hemisphere (sphere for transmissive BSDFs), delta lobes still by their delta.
+    pub sample_bsdf: bool,
+    /// Combination of light and BSDF samples (only meaningful with `sample_lights`).
+    pub mis: Mis,
+    /// How a light is chosen for next event estimation.
+    pub light_selection: LightSelectionMode,
+    /// Russian roulette, `None` for off.
+    pub russian_roulette: Option<RussianRoulette>,
+}
+
+impl Default for PathSettings {
+    fn default() -> Self {
+        Self {
+            max_depth: None,
+            hide_emitters: false,
+            sample_lights: false,
+            sample_bsdf: true,
+            mis: Mis::Off,
+            light_selection: LightSelectionMode::Power,
+            russian_roulette: None,
+        }
+    }
+}
+
+impl PathSettings {
+    /// Names of the techniques these settings switch on, for reports.
+    pub fn technique_names(&self) -> Vec<String> {
+        let mut names = Vec::new();
+        names.push(if self.sample_bsdf { "bsdf-sampling" } else { "uniform-directions" }.to_string());
+        if self.sample_lights {
+            names.push("nee".to_string());
+            names.push(match self.light_selection {
+                LightSelectionMode::Uniform => "light-selection-uniform".to_string(),
+                LightSelectionMode::Power => "light-selection-power".to_string(),
+                LightSelectionMode::Ris { candidates } => format!("light-selection-ris-{candidates}"),
+            });
+            match self.mis {
+                Mis::Off => {}
+                Mis::Balance => names.push("mis-balance".to_string()),
+                Mis::Power => names.push("mis-power".to_string()),
+            }
+        }
+        if let Some(rr) = self.russian_roulette {
+            names.push(format!("russian-roulette-from-{}", rr.start_depth));
+        }
+        names
+    }
+}

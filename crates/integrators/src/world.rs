@@ -1,0 +1,167 @@
+//! Everything light transport needs to know about a scene: geometry, materials and emitters,
+//! in flat arrays indexed by shape.
+
+use crate::RayCounters;
+use geometry::{Accel, Hit, Ray};
+use glam::Vec3;
+use lights::Light;
+use materials::Bsdf;
+use sampling::Frame;
+
+/// Index into [`World::materials`].
+pub type MaterialId = u32;
+
+/// The renderable scene: one acceleration structure over all shapes, a material per shape, and
+/// the lights, some of which are attached to shapes.
+#[derive(Debug)]
+pub struct World {
+    accel: Accel,
+    materials: Vec<Bsdf>,
+    shape_material: Vec<MaterialId>,
+    shape_light: Vec<Option<u32>>,
+    lights: Vec<Light>,
+    environment: Option<u32>,
+    delta_lights: Vec<u32>,
+}
+
+/// A ray's closest surface hit with what is needed to shade it.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceHit<'w> {
+    /// The geometric hit record.
+    pub hit: Hit,
+    /// Shading frame around the shading normal `hit.ns`.
+    pub frame: Frame,
+    /// The surface's BSDF.
+    pub bsdf: &'w Bsdf,
+    /// Index into [`World::lights`] when the surface emits.
+    pub light: Option<u32>,
+}
+
+impl World {
+    /// Assembles a world. `shape_material[i]` and `shape_light[i]` belong to shape `i` of
+    /// `accel`; every index must be in range (checked; the error says which one is not).
+    pub fn new(
+        accel: Accel,
+        materials: Vec<Bsdf>,
+        shape_material: Vec<MaterialId>,
+        shape_light: Vec<Option<u32>>,
+        lights: Vec<Light>,
+    ) -> Result<Self, String> {
+        let shape_count = accel.shapes().len();
+        if shape_material.len() != shape_count || shape_light.len() != shape_count {
+            return Err(format!(
+                "{shape_count} shapes but {} material and {} light assignments",
+                shape_material.len(),
+                shape_light.len()
+            ));
+        }
+        if let Some(m) = shape_material
+            .iter()
+            .find(|&&m| m as usize >= materials.len())
+        {
+            return Err(format!(
+                "material {m} out of range ({} materials)",
+                materials.len()
+            ));
+        }
+        if let Some(l) = shape_light.iter().flatten().find(|&&l| l as usize >= lights.len()) {
+            return Err(format!("light {l} out of range ({} lights)", lights.len()));
+        }
+        let environments: Vec<u32> = (0..lights.len() as u32)
+            .filter(|&i| matches!(lights[i as usize], Light::Environment(_)))
+            .collect();
+        if environments.len() > 1 {
+            return Err("more than one environment emitter".to_string());
+        }
+        let delta_lights = (0..lights.len() as u32)
+            .filter(|&i| lights[i as usize].is_delta())
+            .collect();
+        Ok(Self {
+            accel,
+            materials,
+            shape_material,
+            shape_light,
+            lights,
+            environment: environments.first().copied(),
+            delta_lights,
+        })
+    }
+
+    /// All lights, area lights included.
+    pub fn lights(&self) -> &[Light] {
+        &self.lights
+    }
+
+    /// Index into [`Self::lights`] of the environment emitter, if the scene has one.
+    pub fn environment(&self) -> Option<u32> {
+        self.environment
+    }
+
+    /// Indices of the lights that no ray can hit (point lights).
+    pub fn delta_lights(&self) -> &[u32] {
+        &self.delta_lights
+    }
+
+    /// All materials.
+    pub fn materials(&self) -> &[Bsdf] {
+        &self.materials
+    }
+
+    /// The acceleration structure over all shapes.
+    pub fn accel(&self) -> &Accel {
+        &self.accel
+    }
+
+    /// The closest surface along `ray`, counting one ray.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, counters: &mut RayCounters) -> Option<SurfaceHit<'_>> {
+        counters.rays += 1;
+        let hit = self.accel.intersect(ray, f32::INFINITY)?;
+        let shape = hit.shape as usize;
+        Some(SurfaceHit {
+            hit,
+            frame: Frame::from_normal(hit.ns),
+            bsdf: &self.materials[self.shape_material[shape] as usize],
+            light: self.shape_light[shape],
+        })
+    }
+
+    /// True when nothing blocks the segment from the surface point `p` (geometric normal `ng`)
+    /// to `p_light` (normal `n_light`, zero for points), counting one shadow ray.
+    #[inline]
+    pub fn unoccluded(
+        &self,
+        p: Vec3,
+        ng: Vec3,
+        p_light: Vec3,
+        n_light: Vec3,
+        counters: &mut RayCounters,
+    ) -> bool {
+        counters.shadow_rays += 1;
+        let (ray, distance) = Ray::spawn_to(p, ng, p_light, n_light);
+        !self.accel.occluded(&ray, distance)
+    }
+
+    /// True when nothing blocks the ray from `p` (geometric normal `ng`) in direction `dir` from
+    /// escaping the scene, counting one shadow ray.
+    #[inline]
+    pub fn escapes(&self, p: Vec3, ng: Vec3, dir: Vec3, counters: &mut RayCounters) -> bool {
+        counters.shadow_rays += 1;
+        !self.accel.occluded(&Ray::spawn(p, ng, dir), f32::INFINITY)
+    }
+
+    /// Radiance emitted by the surface of `surface` towards the unit direction `w`.
+    #[inline]
+    pub fn emitted(&self, surface: &SurfaceHit<'_>, w: Vec3) -> Vec3 {
+        surface.light.map_or(Vec3::ZERO, |l| {
+            self.lights[l as usize].radiance_towards(surface.hit.ng, w)
+        })
+    }
+
+    /// Radiance arriving along a ray that escapes the scene.
+    #[inline]
+    pub fn background(&self) -> Vec3 {
+        self.environment
+            .map_or(Vec3::ZERO, |e| self.lights[e as usize].radiance_from_direction())
+    }
+}

@@ -1,0 +1,41 @@
+//! A constant environment (Mitsuba's `constant` emitter): the same radiance from every direction.
+
+use crate::sample::{LightSample, mean_rgb};
+use glam::{Vec2, Vec3};
+use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
+use std::f32::consts::PI;
+
+/// Radiance arriving from infinitely far away, equal in every direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConstantEnvironment {
+    /// Radiance, W m⁻² sr⁻¹ per channel.
+    pub radiance: Vec3,
+    /// Radius of a sphere bounding the scene (world units), used only to estimate power.
+    pub scene_radius: f32,
+}
+
+impl ConstantEnvironment {
+    /// A direction uniform over the sphere of directions (density 1 / 4π per steradian).
+    pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        let wi = sample_uniform_sphere(u);
+        Some(LightSample {
+            radiance: self.radiance,
+            wi,
+            distance: f32::INFINITY,
+            pdf_solid_angle: uniform_sphere_pdf(),
+            p_light: p + wi,
+            n_light: Vec3::ZERO,
+            is_delta: false,
+        })
+    }
+
+    /// Density per steradian of [`Self::sample_li`] choosing any direction: 1 / 4π.
+    pub fn pdf_li(&self) -> f32 {
+        uniform_sphere_pdf()
+    }
+
+    /// Power reaching the scene (W, mean over channels): radiance · π · π r² of the bounding disc.
+    pub fn power(&self) -> f32 {
+        mean_rgb(self.radiance) * PI * PI * self.scene_radius * self.scene_radius
+    }
+}

@@ -1,0 +1,40 @@
+//! Emitters and the choice between them.
+//!
+//! Every light answers three questions for a shading point: sample a direction towards it
+//! ([`Light::sample_li`]), give the density of a direction found some other way
+//! ([`Light::pdf_li`], per steradian), and say how much power it emits ([`Light::power`], used
+//! to pick lights). Emission seen by a ray that hits an emitter is [`Light::radiance_towards`] for
+//! surface lights and [`Light::radiance_from_direction`] for the environment.
+//!
+//! Conventions follow Mitsuba 3: area emitters are one-sided and emit on the side their
+//! geometric normal points to; a point light has intensity in W/sr; a constant environment emits
+//! the same radiance from every direction.
+
+mod environment;
+mod light;
+mod mesh_area;
+mod point;
+mod sample;
+mod selection;
+mod sphere_area;
+
+pub use environment::ConstantEnvironment;
+pub use light::Light;
+pub use mesh_area::MeshAreaLight;
+pub use point::PointLight;
+pub use sample::{LightSample, mean_rgb};
+pub use selection::{LightSelection, LightSelector};
+pub use sphere_area::SphereAreaLight;
+
+/// Converts a density per unit area at a surface point into a density per steradian seen from a
+/// point `distance` away, where `cos_at_light` is the cosine between the surface normal and the
+/// direction back to the viewer. Zero when the surface is seen edge-on.
+#[inline]
+pub fn pdf_area_to_solid_angle(pdf_area: f32, distance: f32, cos_at_light: f32) -> f32 {
+    let cos = cos_at_light.abs();
+    if cos <= 0.0 {
+        0.0
+    } else {
+        pdf_area * distance * distance / cos
+    }
+}

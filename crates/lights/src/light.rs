@@ -1,0 +1,90 @@
+//! The closed set of emitter types, dispatched by enum.
+
+use crate::{ConstantEnvironment, LightSample, MeshAreaLight, PointLight, SphereAreaLight};
+use glam::{Vec2, Vec3};
+
+/// Any emitter in a scene.
+#[derive(Clone, Debug)]
+pub enum Light {
+    /// Area emitter on a triangle mesh.
+    Mesh(MeshAreaLight),
+    /// Area emitter on an analytic sphere.
+    Sphere(SphereAreaLight),
+    /// Point light (a delta light).
+    Point(PointLight),
+    /// Constant environment.
+    Environment(ConstantEnvironment),
+}
+
+impl Light {
+    /// A direction from the shading point `p` towards the light, with `u` uniform in [0, 1)².
+    /// `None` when the sample carries no light (e.g. a back-facing point).
+    #[inline]
+    pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        match self {
+            Light::Mesh(l) => l.sample_li(p, u),
+            Light::Sphere(l) => l.sample_li(p, u),
+            Light::Point(l) => l.sample_li(p),
+            Light::Environment(l) => l.sample_li(p, u),
+        }
+    }
+
+    /// Radiance leaving a point of this light's surface with geometric normal `ng` towards the
+    /// unit direction `w` (zero behind a one-sided emitter, and for lights without a surface).
+    #[inline]
+    pub fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
+        match self {
+            Light::Mesh(l) => l.radiance_towards(ng, w),
+            Light::Sphere(l) => l.radiance_towards(ng, w),
+            Light::Point(_) | Light::Environment(_) => Vec3::ZERO,
+        }
+    }
+
+    /// Radiance arriving along a ray that escapes the scene in any direction: the environment's
+    /// radiance, zero for every other light.
+    #[inline]
+    pub fn radiance_from_direction(&self) -> Vec3 {
+        match self {
+            Light::Environment(l) => l.radiance,
+            _ => Vec3::ZERO,
+        }
+    }
+
+    /// Density per steradian with which [`Self::sample_li`] from `p` would have chosen the point
+    /// `p_light` with geometric normal `n_light` on this light's surface. Zero for lights without
+    /// a surface (point lights, the environment).
+    #[inline]
+    pub fn pdf_li_surface(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+        match self {
+            Light::Mesh(l) => l.pdf_li(p, p_light, n_light),
+            Light::Sphere(l) => l.pdf_li(p, p_light, n_light),
+            Light::Point(_) | Light::Environment(_) => 0.0,
+        }
+    }
+
+    /// Density per steradian with which [`Self::sample_li`] picks a direction that escapes the
+    /// scene: the environment's density, zero for every other light.
+    #[inline]
+    pub fn pdf_li_environment(&self) -> f32 {
+        match self {
+            Light::Environment(l) => l.pdf_li(),
+            _ => 0.0,
+        }
+    }
+
+    /// True for lights that a randomly sampled ray can never hit.
+    #[inline]
+    pub fn is_delta(&self) -> bool {
+        matches!(self, Light::Point(_))
+    }
+
+    /// Emitted power, W (mean over channels); the weight of power-proportional selection.
+    pub fn power(&self) -> f32 {
+        match self {
+            Light::Mesh(l) => l.power(),
+            Light::Sphere(l) => l.power(),
+            Light::Point(l) => l.power(),
+            Light::Environment(l) => l.power(),
+        }
+    }
+}

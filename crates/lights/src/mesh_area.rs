@@ -1,0 +1,114 @@
+//! Area emitters on triangle meshes (Mitsuba's `area` emitter attached to a mesh shape).
+
+use crate::pdf_area_to_solid_angle;
+use crate::sample::{LightSample, mean_rgb};
+use glam::{Vec2, Vec3};
+use sampling::distribution::CdfTable;
+use sampling::warp::sample_uniform_triangle;
+use std::f32::consts::PI;
+
+/// A triangle mesh emitting constant radiance from the front side of each triangle, the side
+/// its geometric normal `(p1 − p0) × (p2 − p0)` points to. Points are sampled uniformly by area.
+#[derive(Clone, Debug)]
+pub struct MeshAreaLight {
+    triangles: Vec<[Vec3; 3]>,
+    area_distribution: CdfTable,
+    total_area: f32,
+    radiance: Vec3,
+}
+
+impl MeshAreaLight {
+    /// An emitter over the given world-space triangles with `radiance` (W m⁻² sr⁻¹, RGB).
+    /// `None` when the triangles have no area at all (such a light can never be seen).
+    pub fn new(triangles: Vec<[Vec3; 3]>, radiance: Vec3) -> Option<Self> {
+        let areas: Vec<f32> = triangles.iter().map(triangle_area).collect();
+        let total_area: f32 = areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32;
+        let area_distribution = CdfTable::new(&areas)?;
+        Some(Self {
+            triangles,
+            area_distribution,
+            total_area,
+            radiance,
+        })
+    }
+
+    /// Emitted radiance, W m⁻² sr⁻¹ (RGB).
+    pub fn radiance(&self) -> Vec3 {
+        self.radiance
+    }
+
+    /// Total surface area, world units squared.
+    pub fn area(&self) -> f32 {
+        self.total_area
+    }
+
+    /// Radiance leaving a point with geometric normal `ng` towards the unit direction `w`:
+    /// the emitter's radiance on the front side, zero behind it.
+    #[inline]
+    pub fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
+        if ng.dot(w) > 0.0 {
+            self.radiance
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// A point uniform by area on the mesh, seen from `p`; `None` when it faces away or
+    /// coincides with `p`.
+    pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        let (index, _pmf, u_remapped) = self.area_distribution.sample(u.x);
+        let [p0, p1, p2] = self.triangles[index];
+        let b = sample_uniform_triangle(Vec2::new(u_remapped, u.y));
+        let p_light = p0 * b.x + p1 * b.y + p2 * b.z;
+        let n_light = (p1 - p0).cross(p2 - p0).normalize_or_zero();
+        let to_light = p_light - p;
+        let distance = to_light.length();
+        if !(distance > 0.0) {
+            return None;
+        }
+        let wi = to_light / distance;
+        let cos_at_light = -n_light.dot(wi);
+        if cos_at_light <= 0.0 {
+            return None;
+        }
+        let pdf_solid_angle =
+            pdf_area_to_solid_angle(1.0 / self.total_area, distance, cos_at_light);
+        if !(pdf_solid_angle > 0.0) || !pdf_solid_angle.is_finite() {
+            return None;
+        }
+        Some(LightSample {
+            radiance: self.radiance,
+            wi,
+            distance,
+            pdf_solid_angle,
+            p_light,
+            n_light,
+            is_delta: false,
+        })
+    }
+
+    /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`
+    /// (geometric normal `n_light`) of this mesh.
+    pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+        let to_light = p_light - p;
+        let distance = to_light.length();
+        if !(distance > 0.0) {
+            return 0.0;
+        }
+        let cos_at_light = -n_light.dot(to_light / distance);
+        if cos_at_light <= 0.0 {
+            return 0.0;
+        }
+        pdf_area_to_solid_angle(1.0 / self.total_area, distance, cos_at_light)
+    }
+
+    /// Emitted power (W, mean over channels): π · area · radiance for a one-sided Lambertian emitter.
+    pub fn power(&self) -> f32 {
+        PI * self.total_area * mean_rgb(self.radiance)
+    }
+}
+
+fn triangle_area(t: &[Vec3; 3]) -> f32 {
+    let area = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
+    if area.is_finite() { area } else { 0.0 }
+}

@@ -1,0 +1,159 @@
+//! Area emitters on spheres (Mitsuba's `area` emitter attached to a `sphere` shape), sampled by
+//! the solid angle of the cap visible from the shading point.
+
+use crate::pdf_area_to_solid_angle;
+use crate::sample::{LightSample, mean_rgb};
+use glam::{Vec2, Vec3};
+use sampling::Frame;
+use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
+use std::f32::consts::{PI, TAU};
+
+/// Below this sin²θ_max (about 1.5°) cone angles are computed by series expansion, since
+/// 1 − cos θ_max cancels catastrophically in f32 for small or distant spheres.
+const SMALL_CONE_SIN2: f32 = 0.000_685_23;
+
+/// A sphere emitting constant radiance outwards (inwards when its normals are flipped).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereAreaLight {
+    /// Centre in world space.
+    pub center: Vec3,
+    /// Radius, world units.
+    pub radius: f32,
+    /// True when the emitting side faces inwards (Mitsuba's `flip_normals`).
+    pub flip_normals: bool,
+    /// Emitted radiance, W m⁻² sr⁻¹ (RGB).
+    pub radiance: Vec3,
+}
+
+impl SphereAreaLight {
+    /// Radiance leaving a point with geometric normal `ng` (as the shape reports it) towards `w`.
+    #[inline]
+    pub fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
+        if ng.dot(w) > 0.0 {
+            self.radiance
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// From outside: a direction uniform in the cone of the visible cap (pbrt-v4's method with a
+    /// series expansion for small cones). From inside: a point uniform by area.
+    pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        let to_center = self.center - p;
+        let dc2 = to_center.length_squared();
+        let r2 = self.radius * self.radius;
+        if dc2 <= r2 {
+            return self.sample_area_from_inside(p, u);
+        }
+        if self.flip_normals {
+            return None;
+        }
+        let dc = dc2.sqrt();
+        let sin2_max = r2 / dc2;
+        let sin_max = sin2_max.sqrt();
+        let (cos_theta, sin2_theta, one_minus_cos_max) = if sin2_max < SMALL_CONE_SIN2 {
+            let sin2 = sin2_max * u.x;
+            ((1.0 - sin2).sqrt(), sin2, 0.5 * sin2_max)
+        } else {
+            let cos_max = (1.0 - sin2_max).max(0.0).sqrt();
+            let cos_theta = 1.0 - u.x * (1.0 - cos_max);
+            (cos_theta, (1.0 - cos_theta * cos_theta).max(0.0), 1.0 - cos_max)
+        };
+        // Angle at the centre between the axis (towards p) and the sampled surface point.
+        let cos_alpha = sin2_theta / sin_max
+            + cos_theta * (1.0 - sin2_theta / sin2_max).max(0.0).sqrt();
+        let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+        let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
+        let axis = Frame::from_normal(-to_center / dc);
+        let n_light = axis
+            .to_world(Vec3::new(sin_alpha * cos_phi, sin_alpha * sin_phi, cos_alpha))
+            .normalize();
+        let p_light = self.center + self.radius * n_light;
+        let to_light = p_light - p;
+        let distance = to_light.length();
+        if !(distance > 0.0) {
+            return None;
+        }
+        let pdf_solid_angle = 1.0 / (TAU * one_minus_cos_max);
+        if !pdf_solid_angle.is_finite() {
+            return None;
+        }
+        Some(LightSample {
+            radiance: self.radiance,
+            wi: to_light / distance,
+            distance,
+            pdf_solid_angle,
+            p_light,
+            n_light,
+            is_delta: false,
+        })
+    }
+
+    fn sample_area_from_inside(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        let outward = sample_uniform_sphere(u);
+        let p_light = self.center + self.radius * outward;
+        let n_light = if self.flip_normals { -outward } else { outward };
+        let to_light = p_light - p;
+        let distance = to_light.length();
+        if !(distance > 0.0) {
+            return None;
+        }
+        let wi = to_light / distance;
+        let cos_at_light = -n_light.dot(wi);
+        if cos_at_light <= 0.0 {
+            return None;
+        }
+        let pdf_solid_angle = pdf_area_to_solid_angle(self.pdf_area(), distance, cos_at_light);
+        if !pdf_solid_angle.is_finite() {
+            return None;
+        }
+        Some(LightSample {
+            radiance: self.radiance,
+            wi,
+            distance,
+            pdf_solid_angle,
+            p_light,
+            n_light,
+            is_delta: false,
+        })
+    }
+
+    /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`
+    /// with geometric normal `n_light` on the sphere.
+    pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+        let dc2 = (self.center - p).length_squared();
+        let r2 = self.radius * self.radius;
+        if dc2 <= r2 {
+            let to_light = p_light - p;
+            let distance = to_light.length();
+            if !(distance > 0.0) {
+                return 0.0;
+            }
+            let cos_at_light = -n_light.dot(to_light / distance);
+            if cos_at_light <= 0.0 {
+                return 0.0;
+            }
+            return pdf_area_to_solid_angle(self.pdf_area(), distance, cos_at_light);
+        }
+        if self.flip_normals {
+            return 0.0;
+        }
+        let sin2_max = r2 / dc2;
+        let one_minus_cos_max = if sin2_max < SMALL_CONE_SIN2 {
+            0.5 * sin2_max
+        } else {
+            1.0 - (1.0 - sin2_max).max(0.0).sqrt()
+        };
+        1.0 / (TAU * one_minus_cos_max)
+    }
+
+    /// Density per unit area of a point uniform on the sphere: 1 / (4π r²).
+    fn pdf_area(&self) -> f32 {
+        uniform_sphere_pdf() / (self.radius * self.radius)
+    }
+
+    /// Emitted power (W, mean over channels): π · 4π r² · radiance.
+    pub fn power(&self) -> f32 {
+        PI * 4.0 * PI * self.radius * self.radius * mean_rgb(self.radiance)
+    }
+}

@@ -1,0 +1,81 @@
+//! Mitsuba's `perspective` and `thinlens` sensors: rays from film positions.
+
+use geometry::Ray;
+use glam::{Mat4, Vec2, Vec3};
+use sampling::warp::sample_concentric_disk;
+
+/// A thin lens: rays leave a disc of `aperture_radius` and converge on the plane at
+/// `focus_distance` along the view axis (both in world units of the camera's local frame).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThinLens {
+    /// Radius of the aperture disc.
+    pub aperture_radius: f32,
+    /// Distance from the lens to the plane in focus, along the view axis.
+    pub focus_distance: f32,
+}
+
+/// A pinhole or thin-lens perspective camera with Mitsuba's conventions: it looks down its local
+/// +z, local +y is up, local +x is image-left, and image rows run top to bottom.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    to_world: Mat4,
+    /// tan of half the field of view along x and y.
+    tan_half_fov: Vec2,
+    resolution: Vec2,
+    near_clip: f32,
+    lens: Option<ThinLens>,
+}
+
+impl Camera {
+    /// A camera placed by `to_world` (camera to world), with horizontal field of view
+    /// `fov_x_degrees` over an image of `width` × `height` pixels.
+    pub fn new(
+        to_world: Mat4,
+        fov_x_degrees: f32,
+        width: u32,
+        height: u32,
+        near_clip: f32,
+        lens: Option<ThinLens>,
+    ) -> Self {
+        let aspect = width as f32 / height as f32;
+        let tan_x = (0.5 * fov_x_degrees.to_radians()).tan();
+        Self {
+            to_world,
+            tan_half_fov: Vec2::new(tan_x, tan_x / aspect),
+            resolution: Vec2::new(width as f32, height as f32),
+            near_clip,
+            lens,
+        }
+    }
+
+    /// True when rays depend on a lens sample (a thin lens with a non-zero aperture).
+    pub fn has_lens(&self) -> bool {
+        self.lens.is_some_and(|l| l.aperture_radius > 0.0)
+    }
+
+    /// The ray through the continuous film position `film` (pixels; (0, 0) is the top-left
+    /// corner of the image, pixel centres at half-integers), using `u_lens` ∈ [0, 1)² on the
+    /// aperture when the camera has a lens. The ray starts on the near clipping plane.
+    pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> Ray {
+        let ndc = film / self.resolution * 2.0 - Vec2::ONE;
+        // Image right is camera -x and image down is camera -y.
+        let on_plane = Vec3::new(
+            -ndc.x * self.tan_half_fov.x,
+            -ndc.y * self.tan_half_fov.y,
+            1.0,
+        );
+        let (origin_local, dir_local) = match self.lens {
+            Some(lens) if lens.aperture_radius > 0.0 => {
+                let aperture = sample_concentric_disk(u_lens) * lens.aperture_radius;
+                let origin = Vec3::new(aperture.x, aperture.y, 0.0);
+                let focus = on_plane * lens.focus_distance;
+                (origin, (focus - origin).normalize())
+            }
+            _ => (Vec3::ZERO, on_plane.normalize()),
+        };
+        let near = origin_local + dir_local * (self.near_clip / dir_local.z);
+        let origin = self.to_world.transform_point3(near);
+        let dir = self.to_world.transform_vector3(dir_local).normalize();
+        Ray::new(origin, dir)
+    }
+}
