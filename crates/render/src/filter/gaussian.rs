@@ -41,7 +41,13 @@ impl GaussianFilter {
             cumulative.push(sum);
         }
         let cdf = cumulative.iter().map(|c| (c / sum) as f32).collect();
-        Ok(Self { stddev, radius, values, cdf, total: sum as f32 })
+        Ok(Self {
+            stddev,
+            radius,
+            values,
+            cdf,
+            total: sum as f32,
+        })
     }
 
     /// Standard deviation in pixels.
@@ -70,7 +76,11 @@ impl GaussianFilter {
         let m = ((u - self.cdf[i]) * self.total / h).max(0.0);
         // Solve h·(f0·s + (f1 − f0)·s²/2) = m·h for s ∈ [0, 1] in the cancellation-free form.
         let denom = f0 + (f0 * f0 + 2.0 * (f1 - f0) * m).max(0.0).sqrt();
-        let s = if denom > 0.0 { (2.0 * m / denom).min(1.0) } else { 0.0 };
+        let s = if denom > 0.0 {
+            (2.0 * m / denom).min(1.0)
+        } else {
+            0.0
+        };
         -self.radius + (i as f32 + s) * h
     }
 }

@@ -46,7 +46,11 @@ pub struct FilterError {
 
 impl fmt::Display for FilterError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} must be positive and finite, got {}", self.parameter, self.value)
+        write!(
+            f,
+            "{} must be positive and finite, got {}",
+            self.parameter, self.value
+        )
     }
 }
 
@@ -64,7 +68,9 @@ fn check_positive(parameter: &'static str, value: f32) -> Result<f32, FilterErro
 impl Filter {
     /// Mitsuba's `tent` filter with the given radius in pixels (Mitsuba's default is 1).
     pub fn tent(radius: f32) -> Result<Self, FilterError> {
-        Ok(Self::Tent { radius: check_positive("tent radius", radius)? })
+        Ok(Self::Tent {
+            radius: check_positive("tent radius", radius)?,
+        })
     }
 
     /// Mitsuba's `gaussian` filter with the given standard deviation in pixels (default 0.5).

@@ -52,7 +52,9 @@ fn values_match_mitsuba_formulas() {
     assert!((gauss.eval_1d(0.5) - ((-0.5f32).exp() - (-8.0f32).exp())).abs() < 1e-6);
     assert_eq!(gauss.eval_1d(2.0), 0.0);
     assert_eq!(gauss.eval_1d(-3.0), 0.0);
-    assert!((gauss.eval(Vec2::new(0.5, 0.0)) - gauss.eval_1d(0.5) * gauss.eval_1d(0.0)).abs() < 1e-7);
+    assert!(
+        (gauss.eval(Vec2::new(0.5, 0.0)) - gauss.eval_1d(0.5) * gauss.eval_1d(0.0)).abs() < 1e-7
+    );
     assert_eq!(Filter::default(), gauss);
 }
 
@@ -63,7 +65,10 @@ fn invalid_parameters_are_errors() {
         assert!(Filter::gaussian(bad).is_err(), "gaussian stddev {bad}");
     }
     let message = Filter::gaussian(-2.0).unwrap_err().to_string();
-    assert!(message.contains("gaussian stddev") && message.contains("-2"), "{message}");
+    assert!(
+        message.contains("gaussian stddev") && message.contains("-2"),
+        "{message}"
+    );
 }
 
 /// `sample_1d` inverts the CDF: the numerically integrated CDF at the sample equals `u`
@@ -75,9 +80,15 @@ fn sample_1d_inverts_the_cdf() {
         for k in 0..=200 {
             let u = (k as f32 / 200.0).min(1.0 - f32::EPSILON / 2.0);
             let x = filter.sample_1d(u);
-            assert!((-r..=r).contains(&x), "{name}: u={u} gave x={x} outside ±{r}");
+            assert!(
+                (-r..=r).contains(&x),
+                "{name}: u={u} gave x={x} outside ±{r}"
+            );
             let cdf = numeric_cdf(&filter, x);
-            assert!((cdf - f64::from(u)).abs() < 2e-5, "{name}: u={u}, x={x}, CDF(x)={cdf}");
+            assert!(
+                (cdf - f64::from(u)).abs() < 2e-5,
+                "{name}: u={u}, x={x}, CDF(x)={cdf}"
+            );
         }
     }
 }
@@ -112,8 +123,9 @@ fn chi_square(filter: &Filter, sample: impl Fn(Vec2) -> Vec2, seed: u64) -> (f64
     let r = f64::from(filter.radius());
     let edge = |i: usize| -r + 2.0 * r * i as f64 / BINS as f64;
     let total = integrate(filter, -r, r, 4800);
-    let marginal: Vec<f64> =
-        (0..BINS).map(|i| integrate(filter, edge(i), edge(i + 1), 200) / total).collect();
+    let marginal: Vec<f64> = (0..BINS)
+        .map(|i| integrate(filter, edge(i), edge(i + 1), 200) / total)
+        .collect();
 
     let mut counts = vec![0u64; BINS * BINS];
     let mut rng = TestRng::new(seed);
@@ -167,5 +179,8 @@ fn chi_square_rejects_a_wrong_distribution() {
     let tent = Filter::tent(2.0).unwrap();
     let gauss = Filter::gaussian(0.5).unwrap();
     let (chi2, critical) = chi_square(&gauss, |u| tent.sample(u), 7);
-    assert!(chi2 > 10.0 * critical, "chi2 = {chi2:.1}, critical {critical:.1}");
+    assert!(
+        chi2 > 10.0 * critical,
+        "chi2 = {chi2:.1}, critical {critical:.1}"
+    );
 }
