@@ -20,6 +20,7 @@
 //! ```
 
 pub mod atomic_write;
+pub mod budget;
 pub mod cli;
 pub mod command_error;
 pub mod diff;
