@@ -1,8 +1,38 @@
 //! Atomic file output: a file appears complete at its final path or not at all.
 
+use std::fmt;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// A file that could not be written; nothing was left at `path`.
+#[derive(Debug)]
+pub struct WriteError {
+    /// The file that was being written.
+    pub path: PathBuf,
+    /// What went wrong.
+    pub source: io::Error,
+}
+
+impl fmt::Display for WriteError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "cannot write '{}': {}", self.path.display(), self.source)
+    }
+}
+
+impl std::error::Error for WriteError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.source)
+    }
+}
+
+/// Writes `bytes` to `path` atomically (see [`write_atomically`]).
+pub fn write_bytes_atomically(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+    write_atomically(path, |w| w.write_all(bytes)).map_err(|source| WriteError {
+        path: path.to_path_buf(),
+        source,
+    })
+}
 
 /// Writes `path` atomically. `write` fills a buffered temporary file created in the same
 /// directory as `path`; only if it succeeds is the file flushed, synced to disk and renamed over
@@ -68,6 +98,19 @@ mod tests {
         write_atomically::<io::Error, _>(&path, |w| w.write_all(b"hello")).unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), b"hello");
         assert_eq!(listing(dir.path()), ["out.txt"]);
+    }
+
+    #[test]
+    fn byte_writes_name_the_file_on_failure() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("s.json");
+        write_bytes_atomically(&path, b"{}").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"{}");
+        let missing = dir.path().join("no").join("s.json");
+        let message = write_bytes_atomically(&missing, b"{}")
+            .unwrap_err()
+            .to_string();
+        assert!(message.contains("s.json"), "{message}");
     }
 
     #[test]
