@@ -22,7 +22,7 @@
 pub mod atomic_write;
 pub mod budget;
 pub mod cli;
-pub mod command_error;
+pub mod commands;
 pub mod diff;
 pub mod driver;
 pub mod film;

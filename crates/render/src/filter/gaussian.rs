@@ -11,7 +11,7 @@ const SEGMENTS: usize = 512;
 /// `f₁(x) = max(0, exp(−x² / (2σ²)) − exp(−r² / (2σ²)))` with radius `r = 4σ`.
 ///
 /// Sampling inverts the CDF of the piecewise-linear interpolant of `f₁` on a table of
-/// [`SEGMENTS`] segments exactly (a quadratic per segment).
+/// 512 equal segments exactly (a quadratic per segment).
 #[derive(Clone, Debug, PartialEq)]
 pub struct GaussianFilter {
     stddev: f32,

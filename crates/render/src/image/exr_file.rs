@@ -43,7 +43,7 @@ impl Image {
     /// Writes the image to `path` as OpenEXR with three float32 channels `R`, `G`, `B`, scan
     /// lines top row first (increasing y), ZIP-compressed: the layout of Mitsuba's `hdrfilm`
     /// with `component_format` float32. The write is atomic (see
-    /// [`write_atomically`](crate::atomic_write::write_atomically)).
+    /// [`crate::atomic_write::write_atomically`]).
     pub fn write_exr(&self, path: &Path) -> Result<(), ImageError> {
         self.check_dimensions()?;
         let width = self.width as usize;

@@ -26,7 +26,7 @@ pub fn linear_to_srgb8(linear: f32) -> u8 {
 impl Image {
     /// Writes the image to `path` as an 8-bit RGB PNG tagged sRGB: each linear channel is
     /// clamped to `[0, 1]` and sRGB-encoded (no tone mapping, no exposure). Atomic (see
-    /// [`write_atomically`](crate::atomic_write::write_atomically)).
+    /// [`crate::atomic_write::write_atomically`]).
     pub fn write_png(&self, path: &Path) -> Result<(), ImageError> {
         self.check_dimensions()?;
         let bytes: Vec<u8> = self
