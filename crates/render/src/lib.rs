@@ -19,6 +19,8 @@
 //! assert_eq!(image.pixel(3, 2), Vec3::splat(3.0));
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod atomic_write;
 pub mod budget;
 pub mod cli;

@@ -16,7 +16,7 @@ mod tests;
 
 use std::fmt;
 
-use glam::Vec2;
+use glam::{UVec2, Vec2};
 
 pub use gaussian::GaussianFilter;
 
@@ -129,6 +129,12 @@ impl Filter {
     /// non-negative filters (up to the gaussian's tabulation, accurate to about 1e-5).
     pub fn sample(&self, u: Vec2) -> Vec2 {
         Vec2::new(self.sample_1d(u.x), self.sample_1d(u.y))
+    }
+
+    /// The continuous film position (pixels, `(0, 0)` the top-left corner of the image) of a
+    /// camera sample for `pixel`: its centre `pixel + 0.5` plus [`sample`](Self::sample)`(u)`.
+    pub fn sample_film_position(&self, pixel: UVec2, u: Vec2) -> Vec2 {
+        pixel.as_vec2() + Vec2::splat(0.5) + self.sample(u)
     }
 }
 

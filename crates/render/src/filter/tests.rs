@@ -1,7 +1,7 @@
 //! Tests of the reconstruction filters: values against Mitsuba's formulas, inverse-CDF accuracy
 //! against numerically integrated CDFs, and a chi-square goodness-of-fit test of 2D sampling.
 
-use glam::Vec2;
+use glam::{UVec2, Vec2};
 
 use super::Filter;
 use crate::test_rng::TestRng;
@@ -56,6 +56,25 @@ fn values_match_mitsuba_formulas() {
         (gauss.eval(Vec2::new(0.5, 0.0)) - gauss.eval_1d(0.5) * gauss.eval_1d(0.0)).abs() < 1e-7
     );
     assert_eq!(Filter::default(), gauss);
+}
+
+#[test]
+fn film_positions_are_offsets_from_the_pixel_centre() {
+    let pixel = UVec2::new(3, 7);
+    assert_eq!(
+        Filter::Box.sample_film_position(pixel, Vec2::new(0.0, 0.75)),
+        Vec2::new(3.0, 7.75)
+    );
+    let tent = Filter::tent(1.0).unwrap();
+    assert_eq!(
+        tent.sample_film_position(pixel, Vec2::splat(0.5)),
+        Vec2::new(3.5, 7.5)
+    );
+    // Tent radius 1, u = 0.125: x = √0.25 − 1 = −0.5.
+    assert_eq!(
+        tent.sample_film_position(pixel, Vec2::new(0.125, 0.5)),
+        Vec2::new(3.0, 7.5)
+    );
 }
 
 #[test]
