@@ -150,7 +150,7 @@ where
 /// in parallel over the tiles, calling `report(fraction of the pass done)` as tiles finish.
 /// Returns the samples left out as non-finite. The film's sums are continued, not replaced, so
 /// consecutive passes give the same bits as one pass of all their samples. The tiles must not
-/// overlap (those from [`tiles`](crate::tiles::tiles) never do).
+/// overlap (those from [`crate::tiles::tiles`] never do).
 pub fn render_pass<S, I, F>(
     film: &mut Film,
     tiles: &[Tile],
