@@ -286,7 +286,8 @@ impl Builder {
             if child.is_text() {
                 let text = child.text().unwrap_or_default();
                 if !text.trim().is_empty() {
-                    let text_loc = ctx.loc(child, "text");
+                    let leading = text.len() - text.trim_start().len();
+                    let text_loc = ctx.loc_at(child.range().start + leading, "text");
                     return Err(text_loc.error(format!(
                         "unexpected text \"{}\" inside {}",
                         text.trim(),
@@ -490,7 +491,12 @@ struct FileCtx<'a, 'input> {
 impl FileCtx<'_, '_> {
     /// The location of `node` in this file, shown as `element`.
     fn loc(&self, node: roxmltree::Node, element: &str) -> Loc {
-        let pos = self.doc.text_pos_at(node.range().start);
+        self.loc_at(node.range().start, element)
+    }
+
+    /// The location of byte offset `offset` in this file, shown as `element`.
+    fn loc_at(&self, offset: usize, element: &str) -> Loc {
+        let pos = self.doc.text_pos_at(offset);
         Loc {
             file: self.file.clone(),
             line: pos.row,
