@@ -43,6 +43,11 @@ pub(crate) fn parse_ply(bytes: &[u8]) -> Result<MeshDesc, String> {
     if u32::try_from(vertex_count).is_err() {
         return Err(format!("too many vertices ({vertex_count})"));
     }
+    for name in ["vertex", "face"] {
+        if header.elements.iter().filter(|e| e.name == name).count() > 1 {
+            return Err(format!("more than one \"{name}\" element"));
+        }
+    }
     let mut mesh = MeshDesc::default();
     for element in &header.elements {
         match element.name.as_str() {
@@ -543,6 +548,7 @@ mod tests {
             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0\n2 0 1\n",
             "ply\nformat ascii 1.0\nelement vertex 1\nproperty float y\nproperty float z\nend_header\n1 2\n",
             "ply\nformat ascii 1.0\nelement junk 1000000000000\nend_header\n",
+            "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 1 1\n",
         ] {
             assert!(parse_ply(text.as_bytes()).is_err(), "accepted: {text:?}");
         }

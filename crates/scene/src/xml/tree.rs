@@ -51,6 +51,9 @@ const OTHER_TAGS: [&str; 3] = ["ref", "default", "include"];
 /// How deeply `<include>` may nest before it is taken for a cycle.
 const MAX_INCLUDE_DEPTH: usize = 16;
 
+/// How deeply objects may nest (real scenes use at most about 5 levels); guards the recursion.
+const MAX_OBJECT_DEPTH: usize = 32;
+
 /// A typed property value.
 #[derive(Debug, Clone)]
 pub(crate) enum Value {
@@ -260,6 +263,11 @@ impl Builder {
         loc: Loc,
     ) -> Result<ObjectNode> {
         let tag = node.tag_name().name().to_string();
+        if node.ancestors().count() > MAX_OBJECT_DEPTH {
+            return Err(loc.error(format!(
+                "elements nested deeper than {MAX_OBJECT_DEPTH} levels"
+            )));
+        }
         if tag != "scene" {
             attrs.check(&["type", "id", "name"], &["type"], &loc)?;
         }

@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
+use std::sync::Once;
 
 use glam::Vec3;
 use scene::{LoadError, MeshDesc, SceneDesc};
@@ -13,19 +14,28 @@ pub fn data_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data")
 }
 
-/// Writes `text` as `name` in a scratch directory next to the fixtures' meshes (so relative mesh
-/// paths like `meshes/box.obj` resolve) and returns its path.
-pub fn write_scene(name: &str, text: &str) -> PathBuf {
+/// The scratch directory for generated scenes, with a fresh copy of the fixture meshes in
+/// `meshes/` (so relative paths like `meshes/box.obj` resolve), made once per test process.
+fn scratch_dir() -> PathBuf {
+    static COPY: Once = Once::new();
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("scene-tests");
-    std::fs::create_dir_all(dir.join("meshes")).unwrap();
-    for entry in std::fs::read_dir(data_dir().join("meshes")).unwrap() {
-        let entry = entry.unwrap();
-        let target = dir.join("meshes").join(entry.file_name());
-        if !target.exists() {
-            std::fs::copy(entry.path(), target).unwrap();
+    COPY.call_once(|| {
+        std::fs::create_dir_all(dir.join("meshes")).unwrap();
+        for entry in std::fs::read_dir(data_dir().join("meshes")).unwrap() {
+            let entry = entry.unwrap();
+            let target = dir.join("meshes").join(entry.file_name());
+            // Copy then rename, so a reader never sees a half-written file.
+            let partial = target.with_extension(format!("partial{}", std::process::id()));
+            std::fs::copy(entry.path(), &partial).unwrap();
+            std::fs::rename(&partial, &target).unwrap();
         }
-    }
-    let path = dir.join(name);
+    });
+    dir
+}
+
+/// Writes `text` as `name` in the scratch directory and returns its path.
+pub fn write_scene(name: &str, text: &str) -> PathBuf {
+    let path = scratch_dir().join(name);
     std::fs::write(&path, text).unwrap();
     path
 }
