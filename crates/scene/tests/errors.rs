@@ -101,7 +101,7 @@ fn unsupported_things() {
         &wrap("<bsdf type=\"conductor\">\n<string name=\"material\" value=\"Xx\"/>\n</bsdf>"),
         5,
         "material",
-        "supported: none",
+        "supported: none, Ag, Al, Au, Cr, Cu",
     );
     expect(
         "spectrum_pairs.xml",

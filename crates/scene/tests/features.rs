@@ -74,7 +74,8 @@ fn bsdf_defaults_and_named_iors() {
 <bsdf type=\"roughconductor\"/>
 <bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.3\"/><float name=\"alpha_v\" value=\"0.3\"/><boolean name=\"sample_visible\" value=\"false\"/></bsdf>
 <bsdf type=\"conductor\"><float name=\"eta\" value=\"1.5\"/><float name=\"k\" value=\"2\"/><spectrum name=\"specular_reflectance\" value=\"0.9\"/></bsdf>
-<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/></bsdf>",
+<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/></bsdf>
+<bsdf type=\"roughconductor\"><string name=\"material\" value=\"Au\"/></bsdf>",
         ),
     );
     let b = &desc.bsdfs;
@@ -114,6 +115,12 @@ fn bsdf_defaults_and_named_iors() {
     };
     assert!(matches!(**front, BsdfDesc::Diffuse { .. }));
     assert!(matches!(**back, BsdfDesc::Conductor { .. }));
+    // Gold: Mitsuba's widely quoted RGB constants are eta ≈ (0.143, 0.375, 1.442), k ≈ (3.983, 2.386, 1.603).
+    let BsdfDesc::RoughConductor { eta, k, .. } = b[6] else {
+        panic!("{:?}", b[6])
+    };
+    assert!(close(eta, Vec3::new(0.143, 0.375, 1.442), 2e-3), "{eta}");
+    assert!(close(k, Vec3::new(3.983, 2.386, 1.603), 2e-3), "{k}");
 }
 
 #[test]

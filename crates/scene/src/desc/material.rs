@@ -21,7 +21,8 @@ pub enum BsdfDesc {
         reflectance: Vec3,
     },
     /// `conductor`: smooth metal, a perfect mirror weighted by the conductor Fresnel term.
-    /// `material="none"` (the default) is eta = 0, k = 1, whose Fresnel reflectance is exactly 1.
+    /// `material="none"` (the default) is eta = 0, k = 1, whose Fresnel reflectance is exactly 1;
+    /// `Ag`, `Al`, `Au`, `Cr`, `Cu` give Mitsuba's measured metals converted to RGB.
     Conductor {
         /// Real part of the relative index of refraction, per channel.
         eta: Vec3,

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use super::{child_loc, unexpected_child, unknown_type};
 use crate::desc::{BsdfDesc, MicrofacetDistribution};
 use crate::error::Result;
-use crate::ior::{ior_names, lookup_ior};
+use crate::ior::{CONDUCTORS, ior_names, lookup_conductor, lookup_ior};
 use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
@@ -241,8 +241,8 @@ fn rgb(
     Ok(params.color(name, kind, default)?.as_vec3())
 }
 
-/// `eta` and `k`, or the named `material` (only `none`, the default, which is a perfect mirror:
-/// eta = 0, k = 1).
+/// `eta` and `k`, or the named `material`: `none` (the default) is a perfect mirror (eta = 0,
+/// k = 1); `Ag`, `Al`, `Au`, `Cr` and `Cu` are Mitsuba's measured metals in RGB.
 fn conductor_ior(params: &mut Params) -> Result<(glam::Vec3, glam::Vec3)> {
     let material = params.string("material")?;
     let has_eta = params.has("eta");
@@ -253,9 +253,14 @@ fn conductor_ior(params: &mut Params) -> Result<(glam::Vec3, glam::Vec3)> {
         if has_eta || has_k {
             return Err(loc.error("give either \"eta\"/\"k\" or \"material\", not both"));
         }
-        return Err(loc.error(format!(
-            "unsupported conductor material \"{name}\" (supported: none; give eta and k as <rgb> instead)"
-        )));
+        let (eta, k) = lookup_conductor(name).ok_or_else(|| {
+            let names: Vec<&str> = CONDUCTORS.iter().map(|(n, _, _)| *n).collect();
+            loc.error(format!(
+                "unsupported conductor material \"{name}\" (supported: none, {}; or give eta and k as <rgb>)",
+                names.join(", ")
+            ))
+        })?;
+        return Ok((glam::Vec3::from_array(eta), glam::Vec3::from_array(k)));
     }
     let eta = params.color("eta", ColorKind::Unbounded, 0.0)?;
     let k = params.color("k", ColorKind::Unbounded, 1.0)?;
