@@ -37,6 +37,8 @@
 //! Meshes without normals get angle-weighted smooth normals unless `face_normals` is set, as in
 //! Mitsuba. The disk is a fan of 128 triangles whose area equals the disk's.
 
+#![warn(missing_docs)]
+
 mod desc;
 mod error;
 mod ior;

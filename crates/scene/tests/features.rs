@@ -366,3 +366,12 @@ fn fixture_directory_is_resolved_relative_to_the_scene() {
     let desc = scene::parse_file(&data_dir().join("cornell.xml"), &[]).unwrap();
     assert!(desc.source.ends_with("cornell.xml"));
 }
+
+#[test]
+fn byte_order_mark_is_accepted() {
+    let desc = ok(
+        "bom.xml",
+        "\u{feff}<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\"/></scene>",
+    );
+    assert!(desc.shapes.is_empty());
+}

@@ -69,6 +69,7 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
             .loc_of("far_clip")
             .error("far_clip must be larger than near_clip"));
     }
+    // Mitsuba reads focus_distance for every projective camera; a pinhole ignores it.
     let focus_distance = params.float_or("focus_distance", far_clip)?;
     if focus_distance <= 0.0 {
         return Err(params

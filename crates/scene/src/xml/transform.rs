@@ -29,6 +29,12 @@ pub(crate) fn operation_matrix(tag: &str, attrs: &Attrs, loc: &Loc) -> Result<DM
             if axis == DVec3::ZERO {
                 return Err(loc.error("rotation axis cannot be zero"));
             }
+            // Mitsuba uses the axis as given, so a non-unit axis there is not a rotation.
+            if (axis.length() - 1.0).abs() > 1e-3 {
+                return Err(loc.error(format!(
+                    "rotation axis {axis} must have unit length (Mitsuba does not normalise it)"
+                )));
+            }
             let angle = parse_float(attrs.get("angle").unwrap_or_default(), loc)?;
             Ok(DMat4::from_axis_angle(axis.normalize(), angle.to_radians()))
         }
@@ -147,8 +153,9 @@ mod tests {
         let m = op("rotate", &[("y", "1"), ("angle", "90")]).unwrap();
         // Rotating +x by 90 degrees about +y gives -z.
         assert!(close(m.transform_vector3(DVec3::X), -DVec3::Z));
-        let m = op("rotate", &[("value", "0 0 2"), ("angle", "90")]).unwrap();
+        let m = op("rotate", &[("value", "0 0 1"), ("angle", "90")]).unwrap();
         assert!(close(m.transform_vector3(DVec3::X), DVec3::Y));
+        assert!(op("rotate", &[("value", "0 0 2"), ("angle", "90")]).is_err());
     }
 
     #[test]

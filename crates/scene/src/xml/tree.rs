@@ -185,7 +185,8 @@ impl Builder {
         let text = String::from_utf8(text)
             .map_err(|_| origin.error(format!("\"{}\" is not valid UTF-8", path.display())))?;
         let file = Arc::new(path.to_path_buf());
-        let doc = roxmltree::Document::parse(&text).map_err(|e| syntax_error(&file, &text, &e))?;
+        let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+        let doc = roxmltree::Document::parse(text).map_err(|e| syntax_error(&file, text, &e))?;
         let root = doc.root_element();
         let ctx = FileCtx {
             doc: &doc,
