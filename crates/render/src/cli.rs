@@ -1,0 +1,298 @@
+//! The `strata` command line (a contract: see the design notes), parsed with clap.
+//!
+//! ```text
+//! strata render SCENE.xml --out OUT.exr [--spp N] [--time SECONDS]
+//!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise]
+//!               [--rr on|off] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
+//!               [--png OUT.png] [--stats OUT.json]
+//! strata diff A.exr B.exr
+//! ```
+//!
+//! Bad flags and values make clap print a message and exit with status 2.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+/// The parsed command line.
+#[derive(Debug, Parser, PartialEq)]
+#[command(
+    name = "strata",
+    version,
+    about = "A path tracer for Mitsuba 3 scenes that measures its own noise"
+)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand, PartialEq)]
+pub enum Command {
+    /// Render a Mitsuba 3 XML scene to a linear float32 RGB EXR image.
+    Render(RenderArgs),
+    /// Compare two EXR images; print one JSON line {"rmse", "relmse", "mean_a", "mean_b"}.
+    Diff(DiffArgs),
+}
+
+/// Integrator presets (`--integrator`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IntegratorPreset {
+    /// No tricks: uniform direction sampling, emission counted on hit (the oracle).
+    Reference,
+    /// BSDF sampling plus next event estimation with power-proportional light selection and
+    /// Russian roulette, no MIS.
+    Nee,
+    /// `nee` plus MIS (power heuristic) between light and BSDF samples.
+    Mis,
+    /// `mis` with RIS light selection.
+    Ris,
+    /// The best of these for the scene, leaving out what it does not need.
+    Auto,
+}
+
+/// Sample generators (`--sampler`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SamplerKind {
+    /// Independent uniform random numbers.
+    Independent,
+    /// Stratified (jittered) samples.
+    Stratified,
+    /// Blue-noise samples.
+    #[value(name = "bluenoise")]
+    BlueNoise,
+}
+
+/// An on/off switch (`--rr on|off`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Switch {
+    /// Enabled.
+    On,
+    /// Disabled.
+    Off,
+}
+
+impl Switch {
+    /// Whether the switch is on.
+    pub fn is_on(self) -> bool {
+        self == Self::On
+    }
+}
+
+/// `strata render`: flags override the scene file's settings; absent flags keep them.
+#[derive(Debug, Args, PartialEq)]
+pub struct RenderArgs {
+    /// The Mitsuba 3 XML scene file.
+    pub scene: PathBuf,
+    /// Output image: linear RGB float32 OpenEXR, top row first.
+    #[arg(long, value_name = "OUT.exr")]
+    pub out: PathBuf,
+    /// Samples per pixel (at least 1); with --time, whichever limit comes first stops.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub spp: Option<u32>,
+    /// Rendering time budget in seconds (fractions allowed); stops at a pass boundary.
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
+    pub time: Option<f64>,
+    /// Integrator preset.
+    #[arg(long, value_enum, default_value_t = IntegratorPreset::Auto)]
+    pub integrator: IntegratorPreset,
+    /// Sample generator; default from the scene's sampler.
+    #[arg(long, value_enum)]
+    pub sampler: Option<SamplerKind>,
+    /// Russian roulette on or off, on top of the preset.
+    #[arg(long, value_enum)]
+    pub rr: Option<Switch>,
+    /// Maximum number of path vertices after the camera, as in Mitsuba (1: emitters seen
+    /// directly; 2: adds direct lighting).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub max_depth: Option<u32>,
+    /// Seed of the sample generator.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// Rendering threads (default: all cores).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub threads: Option<u32>,
+    /// Image width in pixels (with --height).
+    #[arg(long, value_name = "W", requires = "height", value_parser = clap::value_parser!(u32).range(1..))]
+    pub width: Option<u32>,
+    /// Image height in pixels (with --width).
+    #[arg(long, value_name = "H", requires = "width", value_parser = clap::value_parser!(u32).range(1..))]
+    pub height: Option<u32>,
+    /// Also write an 8-bit sRGB PNG preview.
+    #[arg(long, value_name = "OUT.png")]
+    pub png: Option<PathBuf>,
+    /// Also write render statistics as JSON.
+    #[arg(long, value_name = "OUT.json")]
+    pub stats: Option<PathBuf>,
+}
+
+/// `strata diff`.
+#[derive(Debug, Args, PartialEq)]
+pub struct DiffArgs {
+    /// The image to assess.
+    pub a: PathBuf,
+    /// The reference image (the denominator of relmse).
+    pub b: PathBuf,
+}
+
+/// Parses a positive, finite number of seconds.
+fn parse_seconds(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(s) if s.is_finite() && s > 0.0 => Ok(s),
+        Ok(_) => Err(format!(
+            "'{text}' is not a positive, finite number of seconds"
+        )),
+        Err(e) => Err(format!("'{text}' is not a number: {e}")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+
+    /// Parses `strata` followed by `args`.
+    fn parse(args: &[&str]) -> Result<Cli, clap::Error> {
+        Cli::try_parse_from(std::iter::once("strata").chain(args.iter().copied()))
+    }
+
+    /// The render arguments of a command line that must parse.
+    fn render_args(args: &[&str]) -> RenderArgs {
+        match parse(args).unwrap().command {
+            Command::Render(r) => r,
+            other => panic!("not a render command: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_full_flag_set_parses() {
+        let r = render_args(&[
+            "render",
+            "scene.xml",
+            "--out",
+            "o.exr",
+            "--spp",
+            "64",
+            "--time",
+            "0.5",
+            "--integrator",
+            "mis",
+            "--sampler",
+            "bluenoise",
+            "--rr",
+            "off",
+            "--max-depth",
+            "8",
+            "--seed",
+            "7",
+            "--threads",
+            "2",
+            "--width",
+            "320",
+            "--height",
+            "240",
+            "--png",
+            "o.png",
+            "--stats",
+            "s.json",
+        ]);
+        assert_eq!(r.scene, Path::new("scene.xml"));
+        assert_eq!(r.out, Path::new("o.exr"));
+        assert_eq!((r.spp, r.time), (Some(64), Some(0.5)));
+        assert_eq!(r.integrator, IntegratorPreset::Mis);
+        assert_eq!(r.sampler, Some(SamplerKind::BlueNoise));
+        assert_eq!(r.rr, Some(Switch::Off));
+        assert!(!Switch::Off.is_on() && Switch::On.is_on());
+        assert_eq!(
+            (r.max_depth, r.seed, r.threads),
+            (Some(8), Some(7), Some(2))
+        );
+        assert_eq!((r.width, r.height), (Some(320), Some(240)));
+        assert_eq!(r.png.as_deref(), Some(Path::new("o.png")));
+        assert_eq!(r.stats.as_deref(), Some(Path::new("s.json")));
+    }
+
+    #[test]
+    fn defaults_leave_the_scene_in_charge() {
+        let r = render_args(&["render", "s.xml", "--out", "o.exr"]);
+        assert_eq!(r.integrator, IntegratorPreset::Auto);
+        assert_eq!(
+            (r.spp, r.time, r.sampler, r.rr, r.max_depth, r.seed),
+            (None, None, None, None, None, None)
+        );
+        assert_eq!(
+            (r.threads, r.width, r.height, r.png, r.stats),
+            (None, None, None, None, None)
+        );
+    }
+
+    #[test]
+    fn every_preset_and_sampler_name_parses() {
+        for (name, preset) in [
+            ("reference", IntegratorPreset::Reference),
+            ("nee", IntegratorPreset::Nee),
+            ("mis", IntegratorPreset::Mis),
+            ("ris", IntegratorPreset::Ris),
+            ("auto", IntegratorPreset::Auto),
+        ] {
+            assert_eq!(
+                render_args(&["render", "s.xml", "--out", "o.exr", "--integrator", name])
+                    .integrator,
+                preset
+            );
+        }
+        for (name, sampler) in [
+            ("independent", SamplerKind::Independent),
+            ("stratified", SamplerKind::Stratified),
+            ("bluenoise", SamplerKind::BlueNoise),
+        ] {
+            assert_eq!(
+                render_args(&["render", "s.xml", "--out", "o.exr", "--sampler", name]).sampler,
+                Some(sampler)
+            );
+        }
+    }
+
+    #[test]
+    fn bad_values_are_usage_errors_with_status_2() {
+        for bad in [
+            &["render", "s.xml"][..],
+            &["render", "s.xml", "--out", "o.exr", "--time", "0"],
+            &["render", "s.xml", "--out", "o.exr", "--time", "-1"],
+            &["render", "s.xml", "--out", "o.exr", "--time", "NaN"],
+            &["render", "s.xml", "--out", "o.exr", "--time", "soon"],
+            &["render", "s.xml", "--out", "o.exr", "--spp", "0"],
+            &["render", "s.xml", "--out", "o.exr", "--spp", "-4"],
+            &["render", "s.xml", "--out", "o.exr", "--integrator", "bdpt"],
+            &["render", "s.xml", "--out", "o.exr", "--rr", "maybe"],
+            &["render", "s.xml", "--out", "o.exr", "--threads", "0"],
+            &["render", "s.xml", "--out", "o.exr", "--width", "64"],
+            &["render", "s.xml", "--out", "o.exr", "--frobnicate"],
+            &["diff", "a.exr"],
+            &["explode"],
+        ] {
+            let error = parse(bad).expect_err(&format!("{bad:?} must not parse"));
+            assert_eq!(error.exit_code(), 2, "{bad:?}: {error}");
+        }
+    }
+
+    #[test]
+    fn diff_takes_two_images() {
+        let cli = parse(&["diff", "a.exr", "b.exr"]).unwrap();
+        assert_eq!(
+            cli.command,
+            Command::Diff(DiffArgs {
+                a: "a.exr".into(),
+                b: "b.exr".into()
+            })
+        );
+    }
+
+    #[test]
+    fn clap_configuration_is_consistent() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
+    }
+}

@@ -1,0 +1,58 @@
+//! Running the `strata` subcommands, and how their failures map to exit statuses.
+
+use std::fmt;
+use std::io::Write;
+
+use crate::cli::{Command, RenderArgs};
+use crate::diff::DiffReport;
+
+/// A failed command. The exit status is 2 for bad input and 1 for anything else
+/// (command-line syntax errors are reported by clap, also with status 2).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum CommandError {
+    /// The input was at fault (a missing or malformed file, images of different sizes); the
+    /// message names the file.
+    BadInput(String),
+    /// Anything else (an output that cannot be written, an unfinished feature).
+    Failed(String),
+}
+
+impl CommandError {
+    /// The process exit status for this error: 2 for bad input, 1 otherwise.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Self::BadInput(_) => 2,
+            Self::Failed(_) => 1,
+        }
+    }
+}
+
+impl fmt::Display for CommandError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::BadInput(message) | Self::Failed(message) => f.write_str(message),
+        }
+    }
+}
+
+impl std::error::Error for CommandError {}
+
+/// Runs one parsed subcommand, writing its normal output to `out`.
+pub fn run(command: &Command, out: &mut dyn Write) -> Result<(), CommandError> {
+    match command {
+        Command::Diff(args) => {
+            let report = DiffReport::of_files(&args.a, &args.b)?;
+            writeln!(out, "{}", report.to_json_line())
+                .map_err(|e| CommandError::Failed(format!("cannot write the report: {e}")))
+        }
+        Command::Render(args) => render(args),
+    }
+}
+
+/// `strata render`: the scene loader and integrators are not connected yet.
+fn render(args: &RenderArgs) -> Result<(), CommandError> {
+    Err(CommandError::Failed(format!(
+        "cannot render '{}': the render command is not wired to the scene loader and integrators yet",
+        args.scene.display()
+    )))
+}

@@ -1,0 +1,230 @@
+//! The film: per-pixel sums of radiance samples, from which the mean image and the variance of
+//! each pixel's mean are computed.
+//!
+//! Sums are kept in `f64` so that long renders lose no precision and the sum of squares can be
+//! turned into a variance without catastrophic cancellation.
+
+use glam::{DVec3, UVec2, Vec3};
+
+use crate::image::Image;
+use crate::metrics::SizeMismatch;
+
+/// The running sums of one pixel's samples (linear RGB radiance).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelSum {
+    /// Sum of the sample values.
+    pub sum: DVec3,
+    /// Sum of the squared sample values, per channel.
+    pub sum_sq: DVec3,
+    /// Number of samples added.
+    pub count: u32,
+}
+
+impl PixelSum {
+    /// Adds one sample value.
+    pub fn add(&mut self, value: Vec3) {
+        let v = value.as_dvec3();
+        self.sum += v;
+        self.sum_sq += v * v;
+        self.count += 1;
+    }
+
+    /// Adds another pixel's sums to this one.
+    pub fn merge(&mut self, other: &PixelSum) {
+        self.sum += other.sum;
+        self.sum_sq += other.sum_sq;
+        self.count += other.count;
+    }
+
+    /// The mean sample value, or zero when no sample was added.
+    pub fn mean(&self) -> Vec3 {
+        if self.count == 0 {
+            Vec3::ZERO
+        } else {
+            (self.sum / f64::from(self.count)).as_vec3()
+        }
+    }
+
+    /// The estimated variance of the mean, `s² / n` with `s²` the unbiased sample variance of the
+    /// samples, per channel; zero with fewer than two samples.
+    pub fn variance_of_mean(&self) -> Vec3 {
+        if self.count < 2 {
+            return Vec3::ZERO;
+        }
+        let n = f64::from(self.count);
+        let sample_variance =
+            ((self.sum_sq - self.sum * self.sum / n) / (n - 1.0)).max(DVec3::ZERO);
+        (sample_variance / n).as_vec3()
+    }
+}
+
+/// A `width × height` grid of [`PixelSum`]s, row-major, top row first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Film {
+    width: u32,
+    height: u32,
+    pixels: Vec<PixelSum>,
+}
+
+impl Film {
+    /// An empty film (no samples) of `width × height` pixels.
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            pixels: vec![PixelSum::default(); width as usize * height as usize],
+        }
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Row-major index of `pixel`; panics outside the film.
+    fn index(&self, pixel: UVec2) -> usize {
+        assert!(
+            pixel.x < self.width && pixel.y < self.height,
+            "pixel {pixel} outside the {}x{} film",
+            self.width,
+            self.height
+        );
+        pixel.y as usize * self.width as usize + pixel.x as usize
+    }
+
+    /// Adds one sample `value` to `pixel`; panics outside the film.
+    pub fn add(&mut self, pixel: UVec2, value: Vec3) {
+        let i = self.index(pixel);
+        self.pixels[i].add(value);
+    }
+
+    /// The sums of `pixel`; panics outside the film.
+    pub fn pixel(&self, pixel: UVec2) -> &PixelSum {
+        &self.pixels[self.index(pixel)]
+    }
+
+    /// Mutable access to the sums of `pixel`; panics outside the film.
+    pub fn pixel_mut(&mut self, pixel: UVec2) -> &mut PixelSum {
+        let i = self.index(pixel);
+        &mut self.pixels[i]
+    }
+
+    /// Adds every pixel's sums of `other` to this film's; an error if the sizes differ.
+    pub fn merge(&mut self, other: &Film) -> Result<(), SizeMismatch> {
+        if (self.width, self.height) != (other.width, other.height) {
+            return Err(SizeMismatch {
+                a: (self.width, self.height),
+                b: (other.width, other.height),
+            });
+        }
+        for (mine, theirs) in self.pixels.iter_mut().zip(&other.pixels) {
+            mine.merge(theirs);
+        }
+        Ok(())
+    }
+
+    /// The image of per-pixel means (zero where a pixel has no samples).
+    pub fn to_image(&self) -> Image {
+        self.map_to_image(PixelSum::mean)
+    }
+
+    /// The image of per-pixel variances of the mean (see [`PixelSum::variance_of_mean`]), as a
+    /// per-pixel z-test against a reference needs.
+    pub fn variance_of_mean_image(&self) -> Image {
+        self.map_to_image(PixelSum::variance_of_mean)
+    }
+
+    /// Total number of samples added over all pixels.
+    pub fn total_samples(&self) -> u64 {
+        self.pixels.iter().map(|p| u64::from(p.count)).sum()
+    }
+
+    /// An image with `f` applied to every pixel's sums.
+    fn map_to_image(&self, f: impl Fn(&PixelSum) -> Vec3) -> Image {
+        Image {
+            width: self.width,
+            height: self.height,
+            data: self.pixels.iter().map(f).collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mean_and_variance_by_hand() {
+        let mut film = Film::new(3, 2);
+        let p = UVec2::new(2, 1);
+        for v in [1.0, 2.0, 6.0] {
+            film.add(p, Vec3::new(v, 2.0 * v, 0.0));
+        }
+        let image = film.to_image();
+        // Mean 3; unbiased sample variance ((1−3)² + (2−3)² + (6−3)²) / 2 = 7; of the mean 7/3.
+        assert_eq!(image.pixel(2, 1), Vec3::new(3.0, 6.0, 0.0));
+        let variance = film.variance_of_mean_image().pixel(2, 1);
+        assert!(
+            (variance - Vec3::new(7.0 / 3.0, 28.0 / 3.0, 0.0))
+                .abs()
+                .max_element()
+                < 1e-6,
+            "{variance}"
+        );
+        assert_eq!(
+            image.pixel(0, 0),
+            Vec3::ZERO,
+            "a pixel without samples is black"
+        );
+        assert_eq!(film.variance_of_mean_image().pixel(0, 0), Vec3::ZERO);
+        assert_eq!(film.total_samples(), 3);
+        assert_eq!(image.data[5], image.pixel(2, 1), "row-major, top row first");
+    }
+
+    #[test]
+    fn variance_survives_a_large_mean() {
+        let mut sums = PixelSum::default();
+        for k in 0..1000 {
+            sums.add(Vec3::splat(1000.0 + if k % 2 == 0 { 0.5 } else { -0.5 }));
+        }
+        // Sample variance 0.25 · 1000/999; of the mean, divided by 1000.
+        let expected = 0.25 / 999.0;
+        assert!(
+            (sums.variance_of_mean().x - expected).abs() < 1e-3 * expected,
+            "{}",
+            sums.variance_of_mean()
+        );
+    }
+
+    #[test]
+    fn merge_equals_adding_all_samples_to_one_film() {
+        let (mut a, mut b, mut all) = (Film::new(2, 2), Film::new(2, 2), Film::new(2, 2));
+        for (k, pixel) in [
+            (0, UVec2::new(0, 0)),
+            (1, UVec2::new(1, 1)),
+            (2, UVec2::new(0, 0)),
+        ] {
+            let v = Vec3::new(k as f32, 1.0, 0.5);
+            if k % 2 == 0 {
+                a.add(pixel, v)
+            } else {
+                b.add(pixel, v)
+            }
+            all.add(pixel, v);
+        }
+        a.merge(&b).unwrap();
+        assert_eq!(a, all);
+        assert!(a.merge(&Film::new(2, 3)).is_err());
+    }
+
+    #[test]
+    #[should_panic(expected = "outside the 2x2 film")]
+    fn adding_outside_the_film_panics() {
+        Film::new(2, 2).add(UVec2::new(2, 0), Vec3::ONE);
+    }
+}

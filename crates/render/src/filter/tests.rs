@@ -1,0 +1,205 @@
+//! Tests of the reconstruction filters: values against Mitsuba's formulas, inverse-CDF accuracy
+//! against numerically integrated CDFs, and a chi-square goodness-of-fit test of 2D sampling.
+
+use glam::{UVec2, Vec2};
+
+use super::Filter;
+use crate::test_rng::TestRng;
+
+/// The filters under test: Mitsuba's three defaults plus non-default parameters.
+fn filters() -> Vec<(&'static str, Filter)> {
+    vec![
+        ("box", Filter::Box),
+        ("tent r=1", Filter::tent(1.0).unwrap()),
+        ("tent r=1.7", Filter::tent(1.7).unwrap()),
+        ("gaussian sd=0.5", Filter::gaussian(0.5).unwrap()),
+        ("gaussian sd=0.3", Filter::gaussian(0.3).unwrap()),
+    ]
+}
+
+/// `∫_a^b f₁(x) dx` by composite two-point Gauss–Legendre quadrature over `n` intervals, from
+/// `eval_1d` alone. It never evaluates at the interval ends, so the box filter's half-open
+/// support does not bias it.
+fn integrate(filter: &Filter, a: f64, b: f64, n: usize) -> f64 {
+    let h = (b - a) / n as f64;
+    let offset = 0.5 * h / 3f64.sqrt();
+    let f = |x: f64| f64::from(filter.eval_1d(x as f32));
+    (0..n)
+        .map(|i| {
+            let mid = a + (i as f64 + 0.5) * h;
+            0.5 * h * (f(mid - offset) + f(mid + offset))
+        })
+        .sum()
+}
+
+/// The normalised CDF of `f₁` at `x`, by numerical integration independent of the sampler.
+fn numeric_cdf(filter: &Filter, x: f32) -> f64 {
+    let r = f64::from(filter.radius());
+    integrate(filter, -r, f64::from(x), 4000) / integrate(filter, -r, r, 4000)
+}
+
+#[test]
+fn values_match_mitsuba_formulas() {
+    assert_eq!(Filter::Box.eval_1d(-0.5), 1.0);
+    assert_eq!(Filter::Box.eval_1d(0.5), 0.0);
+    let tent = Filter::tent(2.0).unwrap();
+    assert_eq!(tent.eval_1d(0.5), 0.75);
+    assert_eq!(tent.eval_1d(-2.5), 0.0);
+    let gauss = Filter::gaussian(0.5).unwrap();
+    assert_eq!(gauss.radius(), 2.0);
+    // exp(-x²/(2·0.25)) − exp(-8) at x = 0 and x = 0.5.
+    assert!((gauss.eval_1d(0.0) - (1.0 - (-8.0f32).exp())).abs() < 1e-6);
+    assert!((gauss.eval_1d(0.5) - ((-0.5f32).exp() - (-8.0f32).exp())).abs() < 1e-6);
+    assert_eq!(gauss.eval_1d(2.0), 0.0);
+    assert_eq!(gauss.eval_1d(-3.0), 0.0);
+    assert!(
+        (gauss.eval(Vec2::new(0.5, 0.0)) - gauss.eval_1d(0.5) * gauss.eval_1d(0.0)).abs() < 1e-7
+    );
+    assert_eq!(Filter::default(), gauss);
+}
+
+#[test]
+fn film_positions_are_offsets_from_the_pixel_centre() {
+    let pixel = UVec2::new(3, 7);
+    assert_eq!(
+        Filter::Box.sample_film_position(pixel, Vec2::new(0.0, 0.75)),
+        Vec2::new(3.0, 7.75)
+    );
+    let tent = Filter::tent(1.0).unwrap();
+    assert_eq!(
+        tent.sample_film_position(pixel, Vec2::splat(0.5)),
+        Vec2::new(3.5, 7.5)
+    );
+    // Tent radius 1, u = 0.125: x = √0.25 − 1 = −0.5.
+    assert_eq!(
+        tent.sample_film_position(pixel, Vec2::new(0.125, 0.5)),
+        Vec2::new(3.0, 7.5)
+    );
+}
+
+#[test]
+fn invalid_parameters_are_errors() {
+    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+        assert!(Filter::tent(bad).is_err(), "tent radius {bad}");
+        assert!(Filter::gaussian(bad).is_err(), "gaussian stddev {bad}");
+    }
+    let message = Filter::gaussian(-2.0).unwrap_err().to_string();
+    assert!(
+        message.contains("gaussian stddev") && message.contains("-2"),
+        "{message}"
+    );
+}
+
+/// `sample_1d` inverts the CDF: the numerically integrated CDF at the sample equals `u`
+/// (exact for box and tent, within the tabulation error for the gaussian).
+#[test]
+fn sample_1d_inverts_the_cdf() {
+    for (name, filter) in filters() {
+        let r = filter.radius();
+        for k in 0..=200 {
+            let u = (k as f32 / 200.0).min(1.0 - f32::EPSILON / 2.0);
+            let x = filter.sample_1d(u);
+            assert!(
+                (-r..=r).contains(&x),
+                "{name}: u={u} gave x={x} outside ±{r}"
+            );
+            let cdf = numeric_cdf(&filter, x);
+            assert!(
+                (cdf - f64::from(u)).abs() < 2e-5,
+                "{name}: u={u}, x={x}, CDF(x)={cdf}"
+            );
+        }
+    }
+}
+
+#[test]
+fn sample_1d_is_monotonic() {
+    for (name, filter) in filters() {
+        let mut previous = f32::NEG_INFINITY;
+        for k in 0..10_000 {
+            let x = filter.sample_1d(k as f32 / 10_000.0);
+            assert!(x >= previous, "{name}: not monotonic at step {k}");
+            previous = x;
+        }
+    }
+}
+
+/// Upper quantile of the chi-square distribution with `dof` degrees of freedom at significance
+/// `alpha`, by the Wilson–Hilferty cube approximation (relative error below 1% for dof ≥ 10).
+fn chi2_critical(dof: usize, z_alpha: f64) -> f64 {
+    let k = dof as f64;
+    let c = 2.0 / (9.0 * k);
+    k * (1.0 - c + z_alpha * c.sqrt()).powi(3)
+}
+
+/// Chi-square statistic and its critical value at significance 0.001 for 2D offsets drawn by
+/// `sample` (from a `TestRng` seeded with `seed`) against the bin probabilities of `filter`,
+/// integrated from `eval_1d` on a 24×24 grid over the support. Bins expecting fewer than 5
+/// samples are pooled into one.
+fn chi_square(filter: &Filter, sample: impl Fn(Vec2) -> Vec2, seed: u64) -> (f64, f64) {
+    const BINS: usize = 24;
+    const Z_ALPHA_0_001: f64 = 3.090;
+    let r = f64::from(filter.radius());
+    let edge = |i: usize| -r + 2.0 * r * i as f64 / BINS as f64;
+    let total = integrate(filter, -r, r, 4800);
+    let marginal: Vec<f64> = (0..BINS)
+        .map(|i| integrate(filter, edge(i), edge(i + 1), 200) / total)
+        .collect();
+
+    let mut counts = vec![0u64; BINS * BINS];
+    let mut rng = TestRng::new(seed);
+    let bin = |x: f32| (((f64::from(x) + r) / (2.0 * r) * BINS as f64) as usize).min(BINS - 1);
+    for _ in 0..CHI2_SAMPLES {
+        let p = sample(Vec2::new(rng.next_f32(), rng.next_f32()));
+        counts[bin(p.y) * BINS + bin(p.x)] += 1;
+    }
+
+    let (mut chi2, mut cells, mut pooled_observed, mut pooled_expected) = (0.0, 0usize, 0.0, 0.0);
+    for (j, &py) in marginal.iter().enumerate() {
+        for (i, &px) in marginal.iter().enumerate() {
+            let expected = px * py * CHI2_SAMPLES as f64;
+            let observed = counts[j * BINS + i] as f64;
+            if expected < 5.0 {
+                pooled_expected += expected;
+                pooled_observed += observed;
+            } else {
+                chi2 += (observed - expected).powi(2) / expected;
+                cells += 1;
+            }
+        }
+    }
+    if pooled_expected > 0.0 {
+        chi2 += (pooled_observed - pooled_expected).powi(2) / pooled_expected;
+        cells += 1;
+    }
+    (chi2, chi2_critical(cells - 1, Z_ALPHA_0_001))
+}
+
+/// Samples per chi-square test.
+const CHI2_SAMPLES: usize = 200_000;
+
+/// Sampled 2D offsets follow the normalised filter: chi-square at significance 0.001 per filter.
+#[test]
+fn sampled_offsets_follow_the_normalised_filter() {
+    for (seed, (name, filter)) in filters().into_iter().enumerate() {
+        let (chi2, critical) = chi_square(&filter, |u| filter.sample(u), seed as u64);
+        assert!(
+            chi2 < critical,
+            "{name}: chi2 = {chi2:.1} exceeds the 0.001 critical value {critical:.1} \
+             (replay: TestRng seed {seed}, {CHI2_SAMPLES} samples)"
+        );
+    }
+}
+
+/// The same test rejects a wrong distribution of the same support (tent samples against the
+/// gaussian's bins), so it has the power to catch a wrong sampler.
+#[test]
+fn chi_square_rejects_a_wrong_distribution() {
+    let tent = Filter::tent(2.0).unwrap();
+    let gauss = Filter::gaussian(0.5).unwrap();
+    let (chi2, critical) = chi_square(&gauss, |u| tent.sample(u), 7);
+    assert!(
+        chi2 > 10.0 * critical,
+        "chi2 = {chi2:.1}, critical {critical:.1}"
+    );
+}

@@ -1,0 +1,139 @@
+//! Render statistics, written as JSON next to the image (`strata render --stats OUT.json`).
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::atomic_write::{WriteError, write_bytes_atomically};
+use crate::driver::RenderOutput;
+
+/// What a render did and what it cost. Field names are part of the command-line contract.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RenderStats {
+    /// Wall-clock seconds spent rendering (scene loading excluded).
+    pub seconds: f64,
+    /// Wall-clock seconds spent loading and preparing the scene.
+    pub load_seconds: f64,
+    /// Samples per pixel rendered.
+    pub spp: u32,
+    /// Passes the samples were rendered in.
+    pub passes: u32,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Rendering threads.
+    pub threads: usize,
+    /// Closest-hit rays traced (camera and continuation rays).
+    pub rays: u64,
+    /// Occlusion (shadow) rays traced.
+    pub shadow_rays: u64,
+    /// Samples left out of the image because a channel was NaN.
+    pub nan_count: u64,
+    /// Samples left out of the image because a channel was infinite (and none NaN).
+    pub inf_count: u64,
+    /// The techniques that were on, e.g. `"nee"`, `"mis-power"`, `"russian-roulette"`.
+    pub techniques: Vec<String>,
+}
+
+impl RenderStats {
+    /// The statistics the driver knows from `output`; `load_seconds`, `rays`, `shadow_rays`
+    /// and `techniques` are left for the caller to fill in.
+    pub fn from_output(output: &RenderOutput) -> Self {
+        Self {
+            seconds: output.seconds,
+            spp: output.spp,
+            passes: output.passes,
+            width: output.film.width(),
+            height: output.film.height(),
+            threads: output.threads,
+            nan_count: output.non_finite.nan,
+            inf_count: output.non_finite.inf,
+            ..Self::default()
+        }
+    }
+
+    /// The statistics as pretty-printed JSON, fields in declaration order.
+    pub fn to_json(&self) -> String {
+        // Serialising plain numbers, strings and a list of strings cannot fail; non-finite
+        // floats become `null`.
+        serde_json::to_string_pretty(self).expect("RenderStats serialises to JSON")
+    }
+
+    /// Writes [`to_json`](Self::to_json) plus a final newline to `path` atomically.
+    pub fn write_json(&self, path: &Path) -> Result<(), WriteError> {
+        write_bytes_atomically(path, format!("{}\n", self.to_json()).as_bytes())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::driver::{RenderBudget, RenderOptions, render};
+
+    #[test]
+    fn json_has_the_contract_fields_and_round_trips() {
+        let stats = RenderStats {
+            seconds: 1.5,
+            load_seconds: 0.25,
+            spp: 64,
+            passes: 3,
+            width: 320,
+            height: 240,
+            threads: 2,
+            rays: 1000,
+            shadow_rays: 500,
+            nan_count: 1,
+            inf_count: 2,
+            techniques: vec!["nee".into(), "mis-power".into()],
+        };
+        let value: serde_json::Value = serde_json::from_str(&stats.to_json()).unwrap();
+        for field in [
+            "seconds",
+            "load_seconds",
+            "spp",
+            "width",
+            "height",
+            "threads",
+            "rays",
+            "shadow_rays",
+            "nan_count",
+            "inf_count",
+            "techniques",
+        ] {
+            assert!(value.get(field).is_some(), "missing {field}");
+        }
+        assert_eq!(value["load_seconds"], 0.25);
+        assert_eq!(value["techniques"][1], "mis-power");
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("stats.json");
+        stats.write_json(&path).unwrap();
+        let back: RenderStats =
+            serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        assert_eq!(back, stats);
+    }
+
+    #[test]
+    fn from_output_copies_the_drivers_counts() {
+        let sample = |_: &mut (), _, index: u32| if index == 0 { Vec3::NAN } else { Vec3::ONE };
+        let output = render(
+            3,
+            2,
+            &RenderBudget::spp(4),
+            &RenderOptions::quiet(),
+            || (),
+            sample,
+        )
+        .unwrap();
+        let stats = RenderStats::from_output(&output);
+        assert_eq!(
+            (stats.width, stats.height, stats.spp, stats.passes),
+            (3, 2, 4, 1)
+        );
+        assert_eq!((stats.nan_count, stats.inf_count), (6, 0));
+        assert_eq!(stats.threads, output.threads);
+        assert_eq!(stats.seconds, output.seconds);
+    }
+}

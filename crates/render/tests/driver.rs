@@ -1,0 +1,206 @@
+//! Tests of the render driver: reproducibility across thread counts and pass splits, budgets
+//! that stop at pass boundaries, and exclusion of non-finite samples.
+
+use std::time::Duration;
+
+use glam::{UVec2, Vec3};
+use render::driver::{RenderBudget, RenderOptions, RenderOutput, render, render_pass};
+use render::film::Film;
+use render::tiles::tiles;
+
+/// A hash of (pixel, sample index) to 64 well-mixed bits (SplitMix64's finaliser).
+fn hash(pixel: UVec2, index: u32) -> u64 {
+    let mut z = (u64::from(pixel.x) << 40) ^ (u64::from(pixel.y) << 20) ^ u64::from(index);
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// A deterministic sample whose magnitudes span 2⁻¹⁰ .. 2¹⁰, so that any change in the order
+/// of summation would change the sums' low bits. The scratch counter must not matter.
+fn deterministic_sample(calls: &mut u64, pixel: UVec2, index: u32) -> Vec3 {
+    *calls += 1;
+    let h = hash(pixel, index);
+    let scale = ((h & 31) as f32 - 10.0).exp2();
+    let frac = |shift: u32| ((h >> shift) & 0xffff) as f32 / 65536.0;
+    Vec3::new(frac(8), frac(24), frac(40)) * scale
+}
+
+/// Renders `budget` with the deterministic sample on a pool of `threads` threads.
+fn render_on(threads: usize, budget: RenderBudget, options: RenderOptions) -> RenderOutput {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| render(45, 29, &budget, &options, || 0u64, deterministic_sample))
+        .unwrap()
+}
+
+#[test]
+fn films_are_bit_identical_across_thread_counts_and_tile_sizes() {
+    let one = render_on(1, RenderBudget::spp(9), RenderOptions::quiet());
+    let two = render_on(2, RenderBudget::spp(9), RenderOptions::quiet());
+    let small_tiles = render_on(
+        2,
+        RenderBudget::spp(9),
+        RenderOptions {
+            progress: false,
+            tile_size: Some(5),
+        },
+    );
+    assert_eq!((one.threads, two.threads), (1, 2));
+    assert_eq!(one.spp, 9);
+    assert_eq!(one.film, two.film);
+    assert_eq!(one.film, small_tiles.film);
+    assert_eq!(one.film.total_samples(), 45 * 29 * 9);
+}
+
+#[test]
+fn splitting_samples_into_passes_gives_the_same_bits() {
+    let whole = render_on(2, RenderBudget::spp(8), RenderOptions::quiet()).film;
+    let mut passes = Film::new(45, 29);
+    let all_tiles = tiles(45, 29, 16);
+    for (first, spp) in [(0, 1), (1, 2), (3, 5)] {
+        render_pass(
+            &mut passes,
+            &all_tiles,
+            first,
+            spp,
+            &|| 0u64,
+            &deterministic_sample,
+            &|_| {},
+        );
+    }
+    assert_eq!(passes, whole);
+}
+
+#[test]
+fn the_image_is_the_mean_of_each_pixels_samples() {
+    let output = render_on(2, RenderBudget::spp(3), RenderOptions::quiet());
+    let pixel = UVec2::new(44, 28);
+    let expected = (0..3)
+        .map(|i| deterministic_sample(&mut 0, pixel, i))
+        .sum::<Vec3>()
+        / 3.0;
+    let got = output.film.to_image().pixel(44, 28);
+    assert!(
+        (got - expected).abs().max_element() <= 1e-6 * expected.max_element(),
+        "{got} vs {expected}"
+    );
+}
+
+#[test]
+fn time_budget_stops_at_a_pass_boundary_after_the_time_is_spent() {
+    // Each sample sleeps 1 ms: about 16 ms per sample per pixel on one thread for 4×4 pixels.
+    let budget = RenderBudget::seconds(0.1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let output = pool
+        .install(|| {
+            render(
+                4,
+                4,
+                &budget,
+                &RenderOptions::quiet(),
+                || (),
+                |_, _, _| {
+                    std::thread::sleep(Duration::from_millis(1));
+                    Vec3::ONE
+                },
+            )
+        })
+        .unwrap();
+    assert!(
+        output.seconds >= 0.1,
+        "stopped after {} s, before the budget",
+        output.seconds
+    );
+    assert!(
+        output.passes >= 2 && output.spp >= 2,
+        "{} passes, {} spp",
+        output.passes,
+        output.spp
+    );
+    assert!(
+        output.spp < 100,
+        "{} spp cannot fit in 0.1 s at 1 ms per sample",
+        output.spp
+    );
+    for y in 0..4 {
+        for x in 0..4 {
+            assert_eq!(
+                output.film.pixel(UVec2::new(x, y)).count,
+                output.spp,
+                "pixel ({x}, {y})"
+            );
+        }
+    }
+}
+
+#[test]
+fn sample_limit_stops_a_timed_render_first() {
+    let budget = RenderBudget {
+        max_spp: Some(5),
+        max_seconds: Some(60.0),
+    };
+    let output = render_on(2, budget, RenderOptions::quiet());
+    assert_eq!(output.spp, 5);
+    assert_eq!(output.film.total_samples(), 45 * 29 * 5);
+    assert!(output.seconds < 60.0);
+}
+
+#[test]
+fn zero_samples_render_nothing_and_unbounded_budgets_are_refused() {
+    let output = render_on(1, RenderBudget::spp(0), RenderOptions::quiet());
+    assert_eq!(
+        (output.spp, output.passes, output.film.total_samples()),
+        (0, 0, 0)
+    );
+    let unbounded = render(
+        2,
+        2,
+        &RenderBudget::default(),
+        &RenderOptions::quiet(),
+        || (),
+        |_, _, _| Vec3::ONE,
+    );
+    assert!(unbounded.is_err());
+}
+
+#[test]
+fn non_finite_samples_are_counted_and_left_out() {
+    let sample = |_: &mut (), pixel: UVec2, index: u32| -> Vec3 {
+        match (pixel.x, index % 4) {
+            (0, 1) => Vec3::new(1.0, f32::NAN, 0.0),
+            (0, 2) => Vec3::new(f32::INFINITY, 0.0, 0.0),
+            (1, 3) => Vec3::new(f32::NEG_INFINITY, f32::NAN, 0.0),
+            _ => Vec3::splat(index as f32),
+        }
+    };
+    let output = render(
+        2,
+        1,
+        &RenderBudget::spp(8),
+        &RenderOptions::quiet(),
+        || (),
+        sample,
+    )
+    .unwrap();
+    // Pixel 0: NaN at indices 1, 5 and infinity at 2, 6. Pixel 1: NaN (with infinity) at 3, 7.
+    assert_eq!((output.non_finite.nan, output.non_finite.inf), (4, 2));
+    assert_eq!(output.film.pixel(UVec2::new(0, 0)).count, 4);
+    assert_eq!(output.film.pixel(UVec2::new(1, 0)).count, 6);
+    let image = output.film.to_image();
+    assert_eq!(
+        image.pixel(0, 0),
+        Vec3::splat([0.0, 3.0, 4.0, 7.0].iter().sum::<f32>() / 4.0)
+    );
+    assert_eq!(
+        image.pixel(1, 0),
+        Vec3::splat([0.0, 1.0, 2.0, 4.0, 5.0, 6.0].iter().sum::<f32>() / 6.0)
+    );
+    assert!(image.data.iter().all(|p| p.is_finite()));
+}

@@ -1,0 +1,91 @@
+//! End-to-end tests of the `strata` binary: output format and exit statuses.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use glam::Vec3;
+use render::diff::DiffReport;
+use render::image::Image;
+
+/// Runs the built `strata` binary with `args`.
+fn strata(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_strata"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Path as a `&str` for the command line.
+fn arg(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
+
+#[test]
+fn diff_prints_one_json_line_with_the_metrics() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a.exr"), dir.path().join("b.exr"));
+    Image::from_fn(2, 1, |x, _| Vec3::splat(x as f32 + 1.0))
+        .write_exr(&a)
+        .unwrap();
+    Image::from_fn(2, 1, |_, _| Vec3::splat(1.0))
+        .write_exr(&b)
+        .unwrap();
+    let output = strata(&["diff", arg(&a), arg(&b)]);
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    let report: DiffReport = serde_json::from_str(stdout.trim()).unwrap();
+    // A = (1, 2) per channel, B = 1: squared differences 0, 0, 0, 1, 1, 1.
+    assert!((report.rmse - 0.5f64.sqrt()).abs() < 1e-12);
+    assert!((report.relmse - 0.5 / 1.01).abs() < 1e-9);
+    assert_eq!((report.mean_a, report.mean_b), (1.5, 1.0));
+}
+
+#[test]
+fn diff_of_a_missing_file_exits_2_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = dir.path().join("a.exr");
+    Image::new(1, 1).write_exr(&a).unwrap();
+    let output = strata(&["diff", arg(&a), arg(&dir.path().join("absent.exr"))]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("absent.exr"));
+    assert!(output.stdout.is_empty());
+}
+
+#[test]
+fn bad_flags_exit_2() {
+    assert_eq!(
+        strata(&["render", "s.xml", "--out", "o.exr", "--time", "-0.5"])
+            .status
+            .code(),
+        Some(2)
+    );
+    assert_eq!(
+        strata(&["render", "s.xml", "--out", "o.exr", "--integrator", "magic"])
+            .status
+            .code(),
+        Some(2)
+    );
+    assert_eq!(strata(&[]).status.code(), Some(2));
+}
+
+#[test]
+fn render_is_not_wired_yet_and_exits_1() {
+    let output = strata(&[
+        "render",
+        "scene.xml",
+        "--out",
+        "o.exr",
+        "--time",
+        "0.5",
+        "--integrator",
+        "mis",
+    ]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("not wired"));
+}

@@ -1,0 +1,100 @@
+//! Descriptions of materials and lights.
+
+use glam::Vec3;
+
+/// Microfacet normal distribution of a rough conductor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MicrofacetDistribution {
+    /// Beckmann (Mitsuba's default for `roughconductor`).
+    Beckmann,
+    /// GGX / Trowbridge–Reitz.
+    Ggx,
+}
+
+/// A BSDF (`<bsdf type="...">`). Every BSDF except `TwoSided` is one-sided, as in Mitsuba: seen
+/// from the back (against the shading normal) it is black. Colours are linear RGB.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BsdfDesc {
+    /// `diffuse`: Lambertian reflection.
+    Diffuse {
+        /// Albedo, each channel in [0, 1] (default 0.5).
+        reflectance: Vec3,
+    },
+    /// `conductor`: smooth metal, a perfect mirror weighted by the conductor Fresnel term.
+    /// `material="none"` (the default) is eta = 0, k = 1, whose Fresnel reflectance is exactly 1;
+    /// `Ag`, `Al`, `Au`, `Cr`, `Cu` give Mitsuba's measured metals converted to RGB.
+    Conductor {
+        /// Real part of the relative index of refraction, per channel.
+        eta: Vec3,
+        /// Imaginary part (absorption), per channel.
+        k: Vec3,
+        /// Multiplier on the reflected light, each channel in [0, 1] (default 1).
+        specular_reflectance: Vec3,
+    },
+    /// `roughconductor`: microfacet metal (isotropic roughness only).
+    RoughConductor {
+        /// Microfacet distribution (default Beckmann).
+        distribution: MicrofacetDistribution,
+        /// Roughness α (default 0.1), positive.
+        alpha: f32,
+        /// Real part of the relative index of refraction, per channel.
+        eta: Vec3,
+        /// Imaginary part (absorption), per channel.
+        k: Vec3,
+        /// Multiplier on the reflected light, each channel in [0, 1] (default 1).
+        specular_reflectance: Vec3,
+    },
+    /// `dielectric`: smooth glass-like interface with reflection and refraction.
+    Dielectric {
+        /// Index of refraction inside (on the side opposite the normal), default bk7 = 1.5046.
+        int_ior: f32,
+        /// Index of refraction outside, default air = 1.000277.
+        ext_ior: f32,
+        /// Multiplier on reflection, each channel in [0, 1] (default 1).
+        specular_reflectance: Vec3,
+        /// Multiplier on transmission, each channel in [0, 1] (default 1).
+        specular_transmittance: Vec3,
+    },
+    /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
+    /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.
+    TwoSided {
+        /// BSDF of the side the normal points to.
+        front: Box<BsdfDesc>,
+        /// BSDF of the other side.
+        back: Box<BsdfDesc>,
+    },
+}
+
+impl BsdfDesc {
+    /// Mitsuba's BSDF for shapes that name none: diffuse with reflectance 0.5.
+    pub fn default_diffuse() -> Self {
+        BsdfDesc::Diffuse {
+            reflectance: Vec3::splat(0.5),
+        }
+    }
+}
+
+/// An area light attached to a shape (`<emitter type="area">` inside `<shape>`). It emits only
+/// from the front side (the side the shape's normal points to), as in Mitsuba.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AreaEmitterDesc {
+    /// Emitted radiance, linear RGB, W/(m²·sr) per channel (default 1).
+    pub radiance: Vec3,
+}
+
+/// A light that is not attached to a shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EmitterDesc {
+    /// `point`: an isotropic point light.
+    Point {
+        /// World-space position (`position`, or the translation of `to_world`; default origin).
+        position: Vec3,
+        /// Radiant intensity, linear RGB, W/sr per channel (default 1).
+        intensity: Vec3,
+    },
+    /// `constant`: radiance arriving uniformly from every direction at infinity.
+    Constant {
+        /// Radiance, linear RGB, W/(m²·sr) per channel (default 1).
+        radiance: Vec3,
+    },
+}

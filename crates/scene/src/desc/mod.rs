@@ -1,0 +1,36 @@
+//! The scene description produced by the loader: plain data, world space, Mitsuba defaults filled in.
+
+mod material;
+mod render;
+mod shape;
+
+use std::path::PathBuf;
+
+pub use material::{AreaEmitterDesc, BsdfDesc, EmitterDesc, MicrofacetDistribution};
+pub use render::{
+    FilmDesc, FilterDesc, FovAxis, IntegratorDesc, IntegratorKind, SamplerDesc, SamplerKind,
+    SensorDesc, ThinLensDesc,
+};
+pub use shape::{Geometry, MeshDesc, ShapeDesc, SphereDesc};
+
+/// Everything a Mitsuba 3 scene file says, in world space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneDesc {
+    /// The scene file this came from.
+    pub source: PathBuf,
+    /// The `<integrator>`.
+    pub integrator: IntegratorDesc,
+    /// The camera (the scene's single `<sensor>`).
+    pub sensor: SensorDesc,
+    /// The sensor's film (Mitsuba's default `hdrfilm` when absent).
+    pub film: FilmDesc,
+    /// The sensor's sampler (Mitsuba's default `independent` with 4 samples when absent).
+    pub sampler: SamplerDesc,
+    /// Shapes in document order.
+    pub shapes: Vec<ShapeDesc>,
+    /// BSDFs referenced by [`ShapeDesc::bsdf`]: top-level ones in document order, then inline ones,
+    /// and Mitsuba's default diffuse BSDF if some shape names none.
+    pub bsdfs: Vec<BsdfDesc>,
+    /// Lights not attached to shapes (point and constant), in document order.
+    pub emitters: Vec<EmitterDesc>,
+}

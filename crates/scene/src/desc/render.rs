@@ -1,0 +1,182 @@
+//! Descriptions of how the scene is rendered: integrator, camera, film and sampler.
+
+use glam::Mat4;
+
+/// Which light transport algorithm the scene asks for (`<integrator type="...">`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// `path`: unidirectional path tracing.
+    Path,
+    /// `direct`: direct illumination only — the same expectation as `Path` with `max_depth` 2.
+    Direct,
+}
+
+/// The `<integrator>` element with Mitsuba's defaults.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntegratorDesc {
+    /// The algorithm.
+    pub kind: IntegratorKind,
+    /// Longest path in vertices after the camera (Mitsuba's meaning: 1 shows only directly visible
+    /// emitters, 2 adds direct lighting); -1 means unlimited. Default -1; `Direct` is always 2.
+    pub max_depth: i32,
+    /// Path depth at which Russian roulette starts (Mitsuba's `rr_depth`, default 5, at least 1).
+    pub rr_depth: u32,
+    /// Whether emitters seen directly by the camera are hidden (default false).
+    pub hide_emitters: bool,
+}
+
+/// The image axis that a field of view applies to (`fov_axis`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FovAxis {
+    /// The horizontal axis (Mitsuba's default when `fov` is given).
+    X,
+    /// The vertical axis.
+    Y,
+    /// The image diagonal (used for the focal-length default).
+    Diagonal,
+    /// The shorter image side.
+    Smaller,
+    /// The longer image side.
+    Larger,
+}
+
+/// A thin lens (`<sensor type="thinlens">`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThinLensDesc {
+    /// Lens radius in world units (0 behaves as a pinhole).
+    pub aperture_radius: f32,
+    /// Distance along the view direction that is in focus, world units (default: `far_clip`).
+    pub focus_distance: f32,
+}
+
+/// The camera (`<sensor type="perspective">` or `"thinlens"`).
+///
+/// The camera looks down its local +z; its local +x is image-left and +y image-up (Mitsuba's
+/// convention), and `to_world` places it in the scene (rotation and translation only; mirroring is
+/// allowed, scaling is an error as in Mitsuba).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SensorDesc {
+    /// Camera-to-world transform.
+    pub to_world: Mat4,
+    /// Field of view in degrees along `fov_axis`, strictly between 0 and 180. Without `fov` it comes
+    /// from `focal_length` (default 50 mm on 36×24 mm film) as Mitsuba does: a diagonal field of view.
+    pub fov_deg: f32,
+    /// The axis `fov_deg` refers to; use [`SensorDesc::x_fov_deg`] for the horizontal value.
+    pub fov_axis: FovAxis,
+    /// Near clip distance along the view direction, world units (default 0.01).
+    pub near_clip: f32,
+    /// Far clip distance along the view direction, world units (default 10000).
+    pub far_clip: f32,
+    /// The thin lens, `None` for a pinhole camera.
+    pub lens: Option<ThinLensDesc>,
+}
+
+impl SensorDesc {
+    /// The horizontal field of view in degrees for an image of `width`×`height` pixels, converted
+    /// from `fov_deg` along `fov_axis` exactly as Mitsuba's `parse_fov` does.
+    pub fn x_fov_deg(&self, width: u32, height: u32) -> f32 {
+        let aspect = f64::from(width) / f64::from(height);
+        let fov = f64::from(self.fov_deg).to_radians();
+        let axis = match self.fov_axis {
+            FovAxis::Smaller if aspect > 1.0 => FovAxis::Y,
+            FovAxis::Smaller => FovAxis::X,
+            FovAxis::Larger if aspect > 1.0 => FovAxis::X,
+            FovAxis::Larger => FovAxis::Y,
+            other => other,
+        };
+        let x_fov = match axis {
+            FovAxis::Y => 2.0 * ((0.5 * fov).tan() * aspect).atan(),
+            FovAxis::Diagonal => {
+                let diagonal = 2.0 * (0.5 * fov).tan();
+                let width = diagonal / (1.0 + 1.0 / (aspect * aspect)).sqrt();
+                2.0 * (0.5 * width).atan()
+            }
+            _ => fov,
+        };
+        x_fov.to_degrees() as f32
+    }
+}
+
+/// The pixel reconstruction filter (`<rfilter>`, Mitsuba default: gaussian with stddev 0.5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FilterDesc {
+    /// `box`: each sample counts for the pixel it falls in (radius 0.5 pixel).
+    Box,
+    /// `tent`: triangle filter of the given radius in pixels (default 1).
+    Tent {
+        /// Radius in pixels.
+        radius: f32,
+    },
+    /// `gaussian`: Gaussian of the given standard deviation in pixels, cut off at 4 standard
+    /// deviations (default stddev 0.5).
+    Gaussian {
+        /// Standard deviation in pixels.
+        stddev: f32,
+    },
+}
+
+/// The film (`<film type="hdrfilm">`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FilmDesc {
+    /// Image width in pixels (default 768).
+    pub width: u32,
+    /// Image height in pixels (default 576).
+    pub height: u32,
+    /// Reconstruction filter.
+    pub filter: FilterDesc,
+}
+
+/// The sample generator the scene names (`<sampler type="...">`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SamplerKind {
+    /// `independent`: independent uniform samples.
+    Independent,
+    /// `stratified`: jittered strata.
+    Stratified,
+    /// `multijitter`: correlated multi-jittered samples.
+    Multijitter,
+    /// `ldsampler`: a low-discrepancy (0,2)-sequence.
+    Ldsampler,
+}
+
+/// The `<sampler>` element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SamplerDesc {
+    /// Which sampler.
+    pub kind: SamplerKind,
+    /// Samples per pixel as written in the file (default 4); see
+    /// [`SamplerDesc::mitsuba_sample_count`] for the count Mitsuba actually renders.
+    pub sample_count: u32,
+    /// Seed offset (default 0).
+    pub seed: u32,
+}
+
+impl SamplerDesc {
+    /// The samples per pixel Mitsuba renders with: `stratified` rounds up to a square,
+    /// `multijitter` to a near-square product and `ldsampler` to a square of a power of two.
+    pub fn mitsuba_sample_count(&self) -> u64 {
+        let spp = u64::from(self.sample_count);
+        match self.kind {
+            SamplerKind::Independent => spp,
+            SamplerKind::Stratified => {
+                let mut res = 1u64;
+                while res * res < spp {
+                    res += 1;
+                }
+                res * res
+            }
+            SamplerKind::Multijitter => {
+                let rows = (spp as f64).sqrt() as u64;
+                let cols = spp.div_ceil(rows);
+                rows * cols
+            }
+            SamplerKind::Ldsampler => {
+                let mut res = 2u64;
+                while res * res < spp {
+                    res = (res + 1).next_power_of_two();
+                }
+                res * res
+            }
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! Descriptions of shapes in world space.
+
+use glam::{Vec2, Vec3};
+
+use super::material::AreaEmitterDesc;
+
+/// A world-space triangle mesh.
+///
+/// The winding order defines the geometric normal: `(p1 - p0) × (p2 - p0)` points to the front
+/// side. `to_world` and `flip_normals` are already applied: a mirroring transform or
+/// `flip_normals` (but not both) reverses the winding, so the geometric normal and the vertex
+/// normals always agree in orientation (Mitsuba's current `Mesh` convention).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct MeshDesc {
+    /// Vertex positions, world space.
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals for smooth shading, one per position, world space (transformed by the
+    /// inverse transpose of `to_world`). `None` means flat shading with the geometric normal:
+    /// `face_normals="true"`, and the flat canonical shapes (rectangle, cube, disk).
+    pub normals: Option<Vec<Vec3>>,
+    /// Texture coordinates, one per position, when the source has them.
+    pub uvs: Option<Vec<Vec2>>,
+    /// Triangles as indices into `positions`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// A world-space sphere (`<shape type="sphere">`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SphereDesc {
+    /// Centre, world space.
+    pub center: Vec3,
+    /// Radius, world units, positive.
+    pub radius: f32,
+    /// Whether the normals point inwards (`flip_normals`), which also turns the front side of a
+    /// one-sided BSDF or area light inwards.
+    pub flip_normals: bool,
+}
+
+/// The geometry of a shape.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Geometry {
+    /// Triangles: `obj`, `ply`, `rectangle`, `cube` and `disk`.
+    Mesh(MeshDesc),
+    /// An analytic sphere.
+    Sphere(SphereDesc),
+}
+
+/// One `<shape>`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeDesc {
+    /// The Mitsuba plugin name it came from (`obj`, `ply`, `rectangle`, `cube`, `disk`, `sphere`).
+    pub plugin: String,
+    /// The `id` attribute.
+    pub id: Option<String>,
+    /// World-space geometry.
+    pub geometry: Geometry,
+    /// Index into [`crate::SceneDesc::bsdfs`].
+    pub bsdf: usize,
+    /// The area light on this shape, if any.
+    pub emitter: Option<AreaEmitterDesc>,
+}

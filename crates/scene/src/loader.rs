@@ -1,0 +1,89 @@
+//! The scene level: which elements a `<scene>` holds and how they become a [`SceneDesc`].
+
+use std::path::Path;
+
+use crate::desc::SceneDesc;
+use crate::error::Result;
+use crate::params::Params;
+use crate::plugins::bsdf::BsdfTable;
+use crate::plugins::emitter::scene_emitter;
+use crate::plugins::integrator::integrator;
+use crate::plugins::sensor::{Camera, sensor};
+use crate::plugins::shape::shape;
+use crate::plugins::{child_loc, unexpected_child};
+use crate::xml::tree::{Child, ObjectNode, parse_scene_file};
+
+/// What a `<scene>` may contain, for messages.
+const SCENE_CHILDREN: &str =
+    "<integrator>, <sensor>, <shape>, <bsdf>, <emitter type=\"point|constant\">";
+
+/// Loads the scene at `path` (see [`crate::parse_file`]).
+pub(crate) fn load(path: &Path, overrides: &[(String, String)]) -> Result<SceneDesc> {
+    let root = parse_scene_file(path, overrides)?;
+    interpret_scene(path, &root)
+}
+
+fn interpret_scene(path: &Path, root: &ObjectNode) -> Result<SceneDesc> {
+    Params::new(root).finish()?;
+    let mut bsdfs = BsdfTable::new(root);
+    let mut integrator_desc = None;
+    let mut camera: Option<Camera> = None;
+    let mut emitters = Vec::new();
+
+    // Top-level BSDFs first, in document order, so that they keep their order in the table.
+    for child in &root.children {
+        if let Child::Object(object) = child
+            && object.tag == "bsdf"
+        {
+            bsdfs.add(object)?;
+        }
+    }
+    let mut shapes = Vec::new();
+    for child in &root.children {
+        let Child::Object(object) = child else {
+            return Err(child_loc(child).error(
+                "a <ref> at the top level of a scene is not supported; reference BSDFs from shapes",
+            ));
+        };
+        match object.tag.as_str() {
+            "bsdf" => {}
+            "integrator" if integrator_desc.is_none() => {
+                integrator_desc = Some(integrator(object)?);
+            }
+            "integrator" => {
+                return Err(object.loc.error("a scene can have only one <integrator>"));
+            }
+            "sensor" if camera.is_none() => camera = Some(sensor(object)?),
+            "sensor" => return Err(object.loc.error("a scene can have only one <sensor>")),
+            "shape" => shapes.push(shape(object, &mut bsdfs)?),
+            "emitter" => emitters.push(scene_emitter(object)?),
+            "film" | "sampler" => {
+                return Err(object.loc.error(format!(
+                    "<{}> must be nested inside the <sensor>",
+                    object.tag
+                )));
+            }
+            "rfilter" => {
+                return Err(object
+                    .loc
+                    .error("<rfilter> must be nested inside the <film>"));
+            }
+            _ => return Err(unexpected_child(root, child, SCENE_CHILDREN)),
+        }
+    }
+    let integrator_desc = integrator_desc.ok_or_else(|| {
+        root.loc
+            .error("the scene has no <integrator> (Mitsuba requires one; e.g. <integrator type=\"path\"/>)")
+    })?;
+    let camera = camera.ok_or_else(|| root.loc.error("the scene has no <sensor>"))?;
+    Ok(SceneDesc {
+        source: path.to_path_buf(),
+        integrator: integrator_desc,
+        sensor: camera.sensor,
+        film: camera.film,
+        sampler: camera.sampler,
+        shapes,
+        bsdfs: bsdfs.into_bsdfs(),
+        emitters,
+    })
+}

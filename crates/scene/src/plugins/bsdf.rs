@@ -1,0 +1,336 @@
+//! `<bsdf>`: diffuse, conductor, roughconductor, dielectric and twosided, plus the table of BSDFs
+//! that shapes index and `<ref id>` resolves into.
+
+use std::collections::HashMap;
+
+use super::{child_loc, unexpected_child, unknown_type};
+use crate::desc::{BsdfDesc, MicrofacetDistribution};
+use crate::error::Result;
+use crate::ior::{CONDUCTORS, ior_names, lookup_conductor, lookup_ior};
+use crate::params::{ColorKind, Params};
+use crate::xml::tree::{Child, ObjectNode, RefNode};
+
+/// The BSDF plugins this loader understands.
+const SUPPORTED: [&str; 5] = [
+    "diffuse",
+    "conductor",
+    "roughconductor",
+    "dielectric",
+    "twosided",
+];
+
+/// The BSDFs of a scene, filled as shapes and references ask for them.
+pub(crate) struct BsdfTable<'a> {
+    /// Every object in the scene that has an `id`.
+    by_id: HashMap<&'a str, &'a ObjectNode>,
+    /// Table index of each BSDF id interpreted so far.
+    resolved: HashMap<&'a str, usize>,
+    /// Ids being interpreted right now, to catch reference cycles.
+    resolving: Vec<&'a str>,
+    bsdfs: Vec<BsdfDesc>,
+    default: Option<usize>,
+}
+
+impl<'a> BsdfTable<'a> {
+    /// An empty table that can resolve references to any object with an id below `root`.
+    pub fn new(root: &'a ObjectNode) -> Self {
+        let mut by_id = HashMap::new();
+        collect_ids(root, &mut by_id);
+        Self {
+            by_id,
+            resolved: HashMap::new(),
+            resolving: Vec::new(),
+            bsdfs: Vec::new(),
+            default: None,
+        }
+    }
+
+    /// Adds the `<bsdf>` element `node` (once, if it has an id) and returns its index.
+    pub fn add(&mut self, node: &'a ObjectNode) -> Result<usize> {
+        match node.id.as_deref() {
+            Some(_) => self.add_with_id(node),
+            None => {
+                let bsdf = self.interpret(node)?;
+                self.bsdfs.push(bsdf);
+                Ok(self.bsdfs.len() - 1)
+            }
+        }
+    }
+
+    /// The index of the BSDF a `<ref>` names.
+    pub fn reference(&mut self, reference: &RefNode) -> Result<usize> {
+        let Some(&node) = self.by_id.get(reference.id.as_str()) else {
+            return Err(reference
+                .loc
+                .error(format!("no object with id \"{}\"", reference.id)));
+        };
+        if node.tag != "bsdf" {
+            return Err(reference.loc.error(format!(
+                "id \"{}\" names a <{}>, but a <bsdf> is expected here",
+                reference.id, node.tag
+            )));
+        }
+        self.add_with_id(node)
+    }
+
+    /// The index of Mitsuba's default BSDF (diffuse, reflectance 0.5), added on first use.
+    pub fn default_bsdf(&mut self) -> usize {
+        *self.default.get_or_insert_with(|| {
+            self.bsdfs.push(BsdfDesc::default_diffuse());
+            self.bsdfs.len() - 1
+        })
+    }
+
+    /// The finished table.
+    pub fn into_bsdfs(self) -> Vec<BsdfDesc> {
+        self.bsdfs
+    }
+
+    /// Interprets the BSDF `node`, which has an id, once and returns its index.
+    fn add_with_id(&mut self, node: &'a ObjectNode) -> Result<usize> {
+        let id: &'a str = node.id.as_deref().unwrap_or_default();
+        if let Some(&index) = self.resolved.get(id) {
+            return Ok(index);
+        }
+        if self.resolving.contains(&id) {
+            return Err(node
+                .loc
+                .error(format!("circular reference: bsdf \"{id}\" contains itself")));
+        }
+        self.resolving.push(id);
+        let bsdf = self.interpret(node);
+        self.resolving.pop();
+        self.bsdfs.push(bsdf?);
+        let index = self.bsdfs.len() - 1;
+        self.resolved.insert(id, index);
+        Ok(index)
+    }
+
+    /// Interprets one `<bsdf>` element.
+    fn interpret(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
+        if node.plugin == "twosided" {
+            return self.twosided(node);
+        }
+        super::no_children(node)?;
+        let mut params = Params::new(node);
+        let bsdf = match node.plugin.as_str() {
+            "diffuse" => BsdfDesc::Diffuse {
+                reflectance: rgb(&mut params, "reflectance", ColorKind::Reflectance, 0.5)?,
+            },
+            "conductor" => {
+                let (eta, k) = conductor_ior(&mut params)?;
+                BsdfDesc::Conductor {
+                    eta,
+                    k,
+                    specular_reflectance: rgb(
+                        &mut params,
+                        "specular_reflectance",
+                        ColorKind::Reflectance,
+                        1.0,
+                    )?,
+                }
+            }
+            "roughconductor" => {
+                let (eta, k) = conductor_ior(&mut params)?;
+                BsdfDesc::RoughConductor {
+                    distribution: distribution(&mut params)?,
+                    alpha: alpha(&mut params)?,
+                    eta,
+                    k,
+                    specular_reflectance: rgb(
+                        &mut params,
+                        "specular_reflectance",
+                        ColorKind::Reflectance,
+                        1.0,
+                    )?,
+                }
+            }
+            "dielectric" => {
+                let int_ior = ior(&mut params, "int_ior", 1.5046)?;
+                let ext_ior = ior(&mut params, "ext_ior", 1.000277)?;
+                if int_ior == ext_ior {
+                    return Err(node
+                        .loc
+                        .error("the interior and exterior indices of refraction must differ"));
+                }
+                BsdfDesc::Dielectric {
+                    int_ior: int_ior as f32,
+                    ext_ior: ext_ior as f32,
+                    specular_reflectance: rgb(
+                        &mut params,
+                        "specular_reflectance",
+                        ColorKind::Reflectance,
+                        1.0,
+                    )?,
+                    specular_transmittance: rgb(
+                        &mut params,
+                        "specular_transmittance",
+                        ColorKind::Reflectance,
+                        1.0,
+                    )?,
+                }
+            }
+            _ => return Err(unknown_type(node, &SUPPORTED)),
+        };
+        params.finish()?;
+        Ok(bsdf)
+    }
+
+    /// `twosided` with one nested BSDF (both sides) or two (front, back).
+    fn twosided(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
+        Params::new(node).finish()?;
+        let mut sides = Vec::new();
+        for child in &node.children {
+            if sides.len() == 2 {
+                return Err(unexpected_child(node, child, "one or two BSDFs"));
+            }
+            let bsdf = match child {
+                Child::Object(object) if object.tag == "bsdf" => match object.id {
+                    Some(_) => {
+                        let index = self.add(object)?;
+                        self.bsdfs[index].clone()
+                    }
+                    None => self.interpret(object)?,
+                },
+                Child::Ref(reference) => {
+                    let index = self.reference(reference)?;
+                    self.bsdfs[index].clone()
+                }
+                Child::Object(_) => return Err(unexpected_child(node, child, "one or two BSDFs")),
+            };
+            match bsdf {
+                BsdfDesc::TwoSided { .. } | BsdfDesc::Dielectric { .. } => {
+                    return Err(child_loc(child).error(
+                        "twosided can only wrap one-sided reflective BSDFs (not twosided or dielectric)",
+                    ));
+                }
+                bsdf => sides.push(bsdf),
+            }
+        }
+        let mut sides = sides.into_iter();
+        let front = sides
+            .next()
+            .ok_or_else(|| node.loc.error("twosided needs a nested BSDF"))?;
+        let back = sides.next().unwrap_or_else(|| front.clone());
+        Ok(BsdfDesc::TwoSided {
+            front: Box::new(front),
+            back: Box::new(back),
+        })
+    }
+}
+
+/// Records every object with an id below `node`.
+fn collect_ids<'a>(node: &'a ObjectNode, out: &mut HashMap<&'a str, &'a ObjectNode>) {
+    if let Some(id) = &node.id {
+        out.insert(id.as_str(), node);
+    }
+    for child in &node.children {
+        if let Child::Object(object) = child {
+            collect_ids(object, out);
+        }
+    }
+}
+
+/// A colour parameter as f32 RGB.
+fn rgb(
+    params: &mut Params,
+    name: &'static str,
+    kind: ColorKind,
+    default: f64,
+) -> Result<glam::Vec3> {
+    Ok(params.color(name, kind, default)?.as_vec3())
+}
+
+/// `eta` and `k`, or the named `material`: `none` (the default) is a perfect mirror (eta = 0,
+/// k = 1); `Ag`, `Al`, `Au`, `Cr` and `Cu` are Mitsuba's measured metals in RGB.
+fn conductor_ior(params: &mut Params) -> Result<(glam::Vec3, glam::Vec3)> {
+    let material = params.string("material")?;
+    let has_eta = params.has("eta");
+    let has_k = params.has("k");
+    if let Some((name, loc)) = material
+        && name != "none"
+    {
+        if has_eta || has_k {
+            return Err(loc.error("give either \"eta\"/\"k\" or \"material\", not both"));
+        }
+        let (eta, k) = lookup_conductor(name).ok_or_else(|| {
+            let names: Vec<&str> = CONDUCTORS.iter().map(|(n, _, _)| *n).collect();
+            loc.error(format!(
+                "unsupported conductor material \"{name}\" (supported: none, {}; or give eta and k as <rgb>)",
+                names.join(", ")
+            ))
+        })?;
+        return Ok((glam::Vec3::from_array(eta), glam::Vec3::from_array(k)));
+    }
+    let eta = params.color("eta", ColorKind::Unbounded, 0.0)?;
+    let k = params.color("k", ColorKind::Unbounded, 1.0)?;
+    Ok((eta.as_vec3(), k.as_vec3()))
+}
+
+/// The microfacet `distribution` (default Beckmann, as in Mitsuba).
+fn distribution(params: &mut Params) -> Result<MicrofacetDistribution> {
+    match params.string("distribution")? {
+        None => Ok(MicrofacetDistribution::Beckmann),
+        Some((name, loc)) => match name.to_ascii_lowercase().as_str() {
+            "beckmann" => Ok(MicrofacetDistribution::Beckmann),
+            "ggx" => Ok(MicrofacetDistribution::Ggx),
+            _ => Err(loc.error(format!(
+                "unknown distribution \"{name}\" (supported: beckmann, ggx)"
+            ))),
+        },
+    }
+}
+
+/// The isotropic roughness: `alpha` (default 0.1), or equal `alpha_u` and `alpha_v`.
+fn alpha(params: &mut Params) -> Result<f32> {
+    // Mitsuba's sample_visible only changes the sampling strategy, not the image.
+    params.boolean_or("sample_visible", true)?;
+    let alpha = params.float("alpha")?;
+    let alpha_u = params.float("alpha_u")?;
+    let alpha_v = params.float("alpha_v")?;
+    let value = match (alpha, alpha_u, alpha_v) {
+        (Some(a), None, None) => a,
+        (None, None, None) => 0.1,
+        (None, Some(u), Some(v)) if u == v => u,
+        (None, Some(_), Some(_)) => {
+            return Err(params
+                .loc_of("alpha_u")
+                .error("anisotropic roughness (alpha_u != alpha_v) is not supported"));
+        }
+        (None, _, _) => {
+            return Err(params
+                .loc()
+                .error("give both \"alpha_u\" and \"alpha_v\", or \"alpha\""));
+        }
+        (Some(_), _, _) => {
+            return Err(params
+                .loc_of("alpha")
+                .error("give either \"alpha\" or \"alpha_u\"/\"alpha_v\", not both"));
+        }
+    };
+    if value <= 0.0 {
+        return Err(params
+            .loc_of("alpha")
+            .error(format!("roughness must be positive, got {value}")));
+    }
+    Ok(value as f32)
+}
+
+/// An index of refraction given as a number or as one of Mitsuba's material names.
+fn ior(params: &mut Params, name: &'static str, default: f64) -> Result<f64> {
+    let loc = params.loc_of(name);
+    let value = match params.string(name) {
+        Ok(Some((material, loc))) => lookup_ior(material).ok_or_else(|| {
+            loc.error(format!(
+                "unknown material \"{material}\" for {name} (supported: a number or one of {})",
+                ior_names()
+            ))
+        })?,
+        Ok(None) => default,
+        Err(_) => params.float(name)?.unwrap_or(default),
+    };
+    if value <= 0.0 {
+        return Err(loc.error(format!("{name} must be positive, got {value}")));
+    }
+    Ok(value)
+}

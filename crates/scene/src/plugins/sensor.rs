@@ -1,0 +1,306 @@
+//! `<sensor>` (perspective, thinlens) with its `<film>`, `<rfilter>` and `<sampler>`.
+
+use glam::{DMat3, DMat4};
+
+use super::{unexpected_child, unknown_type};
+use crate::desc::{
+    FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
+};
+use crate::error::Result;
+use crate::params::Params;
+use crate::xml::tree::{Child, ObjectNode};
+
+/// Largest accepted image side, pixels.
+const MAX_SIDE: i64 = 1 << 16;
+/// Largest accepted pixel count.
+const MAX_PIXELS: u64 = 1 << 28;
+
+/// A sensor together with the film and sampler it holds.
+pub(crate) struct Camera {
+    pub sensor: SensorDesc,
+    pub film: FilmDesc,
+    pub sampler: SamplerDesc,
+}
+
+/// Interprets a `<sensor>` element; a missing film or sampler takes Mitsuba's defaults.
+pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
+    let thin_lens = match node.plugin.as_str() {
+        "perspective" => false,
+        "thinlens" => true,
+        _ => return Err(unknown_type(node, &["perspective", "thinlens"])),
+    };
+    let mut film = None;
+    let mut sampler = None;
+    for child in &node.children {
+        match child {
+            Child::Object(object) if object.tag == "film" && film.is_none() => {
+                film = Some(film_desc(object)?);
+            }
+            Child::Object(object) if object.tag == "sampler" && sampler.is_none() => {
+                sampler = Some(sampler_desc(object)?);
+            }
+            _ => {
+                return Err(unexpected_child(
+                    node,
+                    child,
+                    "one <film> and one <sampler>",
+                ));
+            }
+        }
+    }
+
+    let mut params = Params::new(node);
+    let to_world = params.transform("to_world")?.unwrap_or(DMat4::IDENTITY);
+    if !is_rigid(&to_world) {
+        return Err(params.loc_of("to_world").error(
+            "the camera's to_world must not scale or shear (Mitsuba forbids it); use rotations, translations and lookat",
+        ));
+    }
+    let (fov_deg, fov_axis) = field_of_view(&mut params)?;
+    let near_clip = params.float_or("near_clip", 1e-2)?;
+    let far_clip = params.float_or("far_clip", 1e4)?;
+    if near_clip <= 0.0 {
+        return Err(params
+            .loc_of("near_clip")
+            .error("near_clip must be positive"));
+    }
+    if far_clip <= near_clip {
+        return Err(params
+            .loc_of("far_clip")
+            .error("far_clip must be larger than near_clip"));
+    }
+    // Mitsuba reads focus_distance for every projective camera; a pinhole ignores it.
+    let focus_distance = params.float_or("focus_distance", far_clip)?;
+    if focus_distance <= 0.0 {
+        return Err(params
+            .loc_of("focus_distance")
+            .error("focus_distance must be positive"));
+    }
+    let lens = if thin_lens {
+        let aperture_radius = params
+            .float("aperture_radius")?
+            .ok_or_else(|| node.loc.error("thinlens needs an \"aperture_radius\""))?;
+        if aperture_radius < 0.0 {
+            return Err(params
+                .loc_of("aperture_radius")
+                .error("aperture_radius must not be negative"));
+        }
+        Some(ThinLensDesc {
+            aperture_radius: aperture_radius as f32,
+            focus_distance: focus_distance as f32,
+        })
+    } else {
+        None
+    };
+    params.finish()?;
+    Ok(Camera {
+        sensor: SensorDesc {
+            to_world: to_world.as_mat4(),
+            fov_deg: fov_deg as f32,
+            fov_axis,
+            near_clip: near_clip as f32,
+            far_clip: far_clip as f32,
+            lens,
+        },
+        film: match film {
+            Some(film) => film,
+            None => default_film(),
+        },
+        sampler: sampler.unwrap_or(SamplerDesc {
+            kind: SamplerKind::Independent,
+            sample_count: 4,
+            seed: 0,
+        }),
+    })
+}
+
+/// True when the linear part is orthonormal within Mitsuba's tolerance (`has_scale` is false).
+fn is_rigid(m: &DMat4) -> bool {
+    let linear = DMat3::from_mat4(*m);
+    let gram = linear.transpose() * linear;
+    m.is_finite()
+        && (gram - DMat3::IDENTITY)
+            .to_cols_array()
+            .iter()
+            .all(|d| d.abs() <= 1e-3)
+}
+
+/// `fov` with `fov_axis`, or the diagonal field of view of `focal_length` (default 50 mm) on
+/// 36×24 mm film, as Mitsuba's `parse_fov`.
+fn field_of_view(params: &mut Params) -> Result<(f64, FovAxis)> {
+    let fov = params.float("fov")?;
+    let focal_length = params.string("focal_length")?;
+    let axis = params.string("fov_axis")?;
+    let (fov, axis) = match (fov, focal_length) {
+        (Some(_), Some((_, loc))) => {
+            return Err(loc.error("give either \"fov\" or \"focal_length\", not both"));
+        }
+        (Some(fov), None) => {
+            let axis = match axis {
+                None => FovAxis::X,
+                Some((name, loc)) => match name.to_ascii_lowercase().as_str() {
+                    "x" => FovAxis::X,
+                    "y" => FovAxis::Y,
+                    "diagonal" => FovAxis::Diagonal,
+                    "smaller" => FovAxis::Smaller,
+                    "larger" => FovAxis::Larger,
+                    _ => {
+                        return Err(loc.error(format!(
+                            "unknown fov_axis \"{name}\" (supported: x, y, diagonal, smaller, larger)"
+                        )));
+                    }
+                },
+            };
+            (fov, axis)
+        }
+        (None, focal_length) => {
+            if let Some((_, loc)) = axis {
+                return Err(loc.error("\"fov_axis\" only applies together with \"fov\""));
+            }
+            let millimetres = match focal_length {
+                None => 50.0,
+                Some((text, loc)) => {
+                    let number = text.trim().strip_suffix("mm").unwrap_or(text.trim());
+                    match number.trim().parse::<f64>() {
+                        Ok(v) if v.is_finite() && v > 0.0 => v,
+                        _ => {
+                            return Err(loc.error(format!(
+                                "could not parse focal_length \"{text}\" (expected e.g. \"50mm\")"
+                            )));
+                        }
+                    }
+                }
+            };
+            let diagonal_mm = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
+            let fov = 2.0 * (diagonal_mm / (2.0 * millimetres)).atan().to_degrees();
+            (fov, FovAxis::Diagonal)
+        }
+    };
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(params.loc_of("fov").error(format!(
+            "the field of view must lie strictly between 0 and 180 degrees, got {fov}"
+        )));
+    }
+    Ok((fov, axis))
+}
+
+/// Mitsuba's film when a sensor has none: 768×576 with a gaussian filter.
+fn default_film() -> FilmDesc {
+    FilmDesc {
+        width: 768,
+        height: 576,
+        filter: FilterDesc::Gaussian { stddev: 0.5 },
+    }
+}
+
+/// Interprets a `<film>` element.
+fn film_desc(node: &ObjectNode) -> Result<FilmDesc> {
+    if node.plugin != "hdrfilm" {
+        return Err(unknown_type(node, &["hdrfilm"]));
+    }
+    let mut filter = None;
+    for child in &node.children {
+        match child {
+            Child::Object(object) if object.tag == "rfilter" && filter.is_none() => {
+                filter = Some(filter_desc(object)?);
+            }
+            _ => return Err(unexpected_child(node, child, "one <rfilter>")),
+        }
+    }
+    let mut params = Params::new(node);
+    let width = params.integer_in("width", 768, 1, MAX_SIDE)? as u32;
+    let height = params.integer_in("height", 576, 1, MAX_SIDE)? as u32;
+    if u64::from(width) * u64::from(height) > MAX_PIXELS {
+        return Err(node.loc.error(format!(
+            "{width}x{height} pixels is more than the supported {MAX_PIXELS}"
+        )));
+    }
+    // Output encodings that do not change the rendered values: Strata always writes float32 RGB.
+    for (name, accepted) in [
+        ("pixel_format", &["rgb", "rgba"][..]),
+        ("component_format", &["float16", "float32"][..]),
+        ("file_format", &["openexr", "exr"][..]),
+    ] {
+        if let Some((value, loc)) = params.string(name)?
+            && !accepted.contains(&value.to_ascii_lowercase().as_str())
+        {
+            return Err(loc.error(format!(
+                "unsupported {name} \"{value}\" (supported: {})",
+                accepted.join(", ")
+            )));
+        }
+    }
+    if params.boolean_or("sample_border", false)? {
+        return Err(params
+            .loc_of("sample_border")
+            .error("sample_border=\"true\" is not supported"));
+    }
+    params.ignore("banner");
+    params.finish()?;
+    Ok(FilmDesc {
+        width,
+        height,
+        filter: filter.unwrap_or(FilterDesc::Gaussian { stddev: 0.5 }),
+    })
+}
+
+/// Interprets an `<rfilter>` element.
+fn filter_desc(node: &ObjectNode) -> Result<FilterDesc> {
+    super::no_children(node)?;
+    let mut params = Params::new(node);
+    let filter = match node.plugin.as_str() {
+        "box" => FilterDesc::Box,
+        "tent" => FilterDesc::Tent {
+            radius: positive(&mut params, "radius", 1.0)?,
+        },
+        "gaussian" => FilterDesc::Gaussian {
+            stddev: positive(&mut params, "stddev", 0.5)?,
+        },
+        _ => return Err(unknown_type(node, &["box", "tent", "gaussian"])),
+    };
+    params.finish()?;
+    Ok(filter)
+}
+
+/// A positive float parameter with a default.
+fn positive(params: &mut Params, name: &'static str, default: f64) -> Result<f32> {
+    let value = params.float_or(name, default)?;
+    if value <= 0.0 {
+        return Err(params
+            .loc_of(name)
+            .error(format!("\"{name}\" must be positive, got {value}")));
+    }
+    Ok(value as f32)
+}
+
+/// Interprets a `<sampler>` element.
+fn sampler_desc(node: &ObjectNode) -> Result<SamplerDesc> {
+    super::no_children(node)?;
+    let mut params = Params::new(node);
+    let kind = match node.plugin.as_str() {
+        "independent" => SamplerKind::Independent,
+        "stratified" => SamplerKind::Stratified,
+        "multijitter" => SamplerKind::Multijitter,
+        "ldsampler" => SamplerKind::Ldsampler,
+        _ => {
+            return Err(unknown_type(
+                node,
+                &["independent", "stratified", "multijitter", "ldsampler"],
+            ));
+        }
+    };
+    if matches!(kind, SamplerKind::Stratified | SamplerKind::Multijitter)
+        && !params.boolean_or("jitter", true)?
+    {
+        return Err(params
+            .loc_of("jitter")
+            .error("jitter=\"false\" is not supported (it biases the image)"));
+    }
+    let desc = SamplerDesc {
+        kind,
+        sample_count: params.integer_in("sample_count", 4, 1, i64::from(u32::MAX))? as u32,
+        seed: params.integer_in("seed", 0, 0, i64::from(u32::MAX))? as u32,
+    };
+    params.finish()?;
+    Ok(desc)
+}

@@ -1,0 +1,178 @@
+//! `<shape>`: obj, ply, rectangle, cube, disk and sphere, with their BSDF and area emitter.
+
+use glam::{DMat3, DMat4, DVec3};
+
+use super::bsdf::BsdfTable;
+use super::emitter::area_emitter;
+use super::{unexpected_child, unknown_type};
+use crate::desc::{Geometry, MeshDesc, ShapeDesc, SphereDesc};
+use crate::error::{Loc, Result};
+use crate::mesh::canonical::{cube, disk, rectangle};
+use crate::mesh::obj::read_obj;
+use crate::mesh::place::{Shading, place};
+use crate::mesh::ply::read_ply;
+use crate::params::Params;
+use crate::xml::tree::{Child, ObjectNode};
+
+/// The shape plugins this loader understands.
+const SUPPORTED: [&str; 6] = ["obj", "ply", "rectangle", "cube", "disk", "sphere"];
+
+/// Interprets a `<shape>` element; its BSDF goes into `bsdfs`.
+pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Result<ShapeDesc> {
+    if !SUPPORTED.contains(&node.plugin.as_str()) {
+        return Err(unknown_type(node, &SUPPORTED));
+    }
+    let mut bsdf = None;
+    let mut emitter = None;
+    for child in &node.children {
+        let allowed = "one <bsdf> or <ref id=\"...\"/> to a bsdf, and one <emitter type=\"area\">";
+        match child {
+            Child::Object(object) if object.tag == "bsdf" && bsdf.is_none() => {
+                bsdf = Some(bsdfs.add(object)?);
+            }
+            Child::Ref(reference) if bsdf.is_none() => {
+                bsdf = Some(bsdfs.reference(reference)?);
+            }
+            Child::Object(object) if object.tag == "emitter" && emitter.is_none() => {
+                emitter = Some(area_emitter(object)?);
+            }
+            _ => return Err(unexpected_child(node, child, allowed)),
+        }
+    }
+
+    let mut params = Params::new(node);
+    let to_world = params.transform("to_world")?.unwrap_or(DMat4::IDENTITY);
+    let to_world_loc = params.loc_of("to_world");
+    check_invertible(&to_world, to_world_loc)?;
+    let flip_normals = params.boolean_or("flip_normals", false)?;
+    let geometry = match node.plugin.as_str() {
+        "sphere" => Geometry::Sphere(sphere(&mut params, &to_world, flip_normals)?),
+        plugin => {
+            let (mesh, shading) = match plugin {
+                "obj" | "ply" => mesh_file(&mut params, plugin)?,
+                "rectangle" => (rectangle(), Shading::Flat),
+                "disk" => (disk(), Shading::Flat),
+                _ => {
+                    // Accepted for Mitsuba compatibility: the cube is flat-shaded either way.
+                    params.boolean_or("face_normals", false)?;
+                    (cube(), Shading::Flat)
+                }
+            };
+            let placed =
+                place(mesh, &to_world, flip_normals, shading).map_err(|e| to_world_loc.error(e))?;
+            Geometry::Mesh(placed)
+        }
+    };
+    params.finish()?;
+    Ok(ShapeDesc {
+        plugin: node.plugin.clone(),
+        id: node.id.clone(),
+        geometry,
+        bsdf: match bsdf {
+            Some(index) => index,
+            None => bsdfs.default_bsdf(),
+        },
+        emitter,
+    })
+}
+
+/// Fails unless `m` is finite and invertible.
+fn check_invertible(m: &DMat4, loc: &Loc) -> Result<()> {
+    let linear = DMat3::from_mat4(*m);
+    let scale = linear.x_axis.length() * linear.y_axis.length() * linear.z_axis.length();
+    let det = linear.determinant();
+    let singular = det.abs() <= 1e-12 * scale || det.is_nan();
+    if !m.is_finite() || singular || !linear.inverse().is_finite() {
+        return Err(loc.error("to_world is not invertible (a zero scale?)"));
+    }
+    Ok(())
+}
+
+/// An `obj` or `ply` mesh read from `filename` (relative to the scene file's directory).
+fn mesh_file(params: &mut Params, plugin: &str) -> Result<(MeshDesc, Shading)> {
+    let (filename, loc) = params.string("filename")?.ok_or_else(|| {
+        params
+            .loc()
+            .error("missing required parameter \"filename\"")
+    })?;
+    let face_normals = params.boolean_or("face_normals", false)?;
+    let flip_tex_coords = params.boolean_or("flip_tex_coords", plugin == "obj")?;
+    let dir = loc.file.parent().unwrap_or(std::path::Path::new(""));
+    let path = dir.join(filename);
+    if !path.is_file() {
+        return Err(loc.error(format!("mesh file \"{}\" not found", path.display())));
+    }
+    let result = if plugin == "obj" {
+        read_obj(&path, flip_tex_coords)
+    } else {
+        read_ply(&path)
+    };
+    let mut mesh = result.map_err(|e| {
+        loc.error(format!(
+            "cannot load {} file \"{}\": {e}",
+            plugin.to_uppercase(),
+            path.display()
+        ))
+    })?;
+    if plugin == "ply"
+        && flip_tex_coords
+        && let Some(uvs) = mesh.uvs.as_mut()
+    {
+        for uv in uvs {
+            uv.y = 1.0 - uv.y;
+        }
+    }
+    if mesh.triangles.is_empty() {
+        return Err(loc.error(format!(
+            "mesh file \"{}\" contains no faces",
+            path.display()
+        )));
+    }
+    let shading = if face_normals {
+        Shading::Flat
+    } else {
+        Shading::Smooth
+    };
+    Ok((mesh, shading))
+}
+
+/// A sphere placed by `to_world`, which may only rotate, translate and scale uniformly.
+fn sphere(params: &mut Params, to_world: &DMat4, flip_normals: bool) -> Result<SphereDesc> {
+    let center = params.point("center")?.unwrap_or(DVec3::ZERO);
+    let radius = params.float_or("radius", 1.0)?;
+    if radius <= 0.0 {
+        return Err(params
+            .loc_of("radius")
+            .error(format!("radius must be positive, got {radius}")));
+    }
+    let linear = DMat3::from_mat4(*to_world);
+    let gram = linear.transpose() * linear;
+    let scale_sq = gram.x_axis.x;
+    let uniform = (gram - DMat3::from_diagonal(DVec3::splat(scale_sq)))
+        .to_cols_array()
+        .iter()
+        .all(|d| d.abs() <= 1e-5 * scale_sq);
+    if !uniform {
+        return Err(params
+            .loc_of("to_world")
+            .error("a sphere's to_world may only rotate, translate and scale uniformly"));
+    }
+    if linear.determinant() < 0.0 {
+        return Err(params.loc_of("to_world").error(
+            "a sphere's to_world must not mirror (use flip_normals to turn it inside out)",
+        ));
+    }
+    let world_center = to_world.transform_point3(center).as_vec3();
+    let world_radius = (radius * scale_sq.sqrt()) as f32;
+    let radius_ok = world_radius.is_finite() && world_radius > 0.0;
+    if !world_center.is_finite() || !radius_ok {
+        return Err(params
+            .loc_of("to_world")
+            .error("the sphere's world-space center or radius is out of range"));
+    }
+    Ok(SphereDesc {
+        center: world_center,
+        radius: world_radius,
+        flip_normals,
+    })
+}

@@ -1,0 +1,6 @@
+//! The XML layer: attributes, values, transforms and the object tree.
+
+pub(crate) mod attrs;
+pub(crate) mod transform;
+pub(crate) mod tree;
+pub(crate) mod values;

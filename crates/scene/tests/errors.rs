@@ -1,0 +1,542 @@
+//! Every kind of bad input is an error naming the file, the line and the element.
+
+mod common;
+
+use common::{load, wrap, write_scene};
+use scene::LoadError;
+
+/// Loads `text` as `name` and returns the error it must produce.
+fn error(name: &str, text: &str) -> LoadError {
+    match load(name, text) {
+        Ok(_) => panic!("{name}: expected an error"),
+        Err(e) => e,
+    }
+}
+
+/// Checks file name, line, element and message of the error for `text`.
+fn expect(name: &str, text: &str, line: u32, element: &str, message: &str) {
+    let err = error(name, text);
+    let shown = err.to_string();
+    assert!(err.file.ends_with(name), "{name}: wrong file in {shown}");
+    assert_eq!(err.line, line, "{name}: wrong line in {shown}");
+    assert!(
+        err.element.contains(element),
+        "{name}: element {element:?} not in {shown}"
+    );
+    assert!(
+        err.message.contains(message),
+        "{name}: message {message:?} not in {shown}"
+    );
+    assert!(shown.contains(name), "{name}: file missing from {shown}");
+    assert!(
+        shown.contains(&format!(":{line}:")),
+        "{name}: line missing from {shown}"
+    );
+}
+
+#[test]
+fn display_format() {
+    let err = error("display.xml", &wrap("<shape type=\"foo\"/>"));
+    let text = err.to_string();
+    assert!(
+        text.ends_with(
+            "display.xml:4:1: <shape type=\"foo\">: unknown shape type \"foo\" (supported: obj, ply, rectangle, cube, disk, sphere)"
+        ),
+        "{text}"
+    );
+}
+
+#[test]
+fn unsupported_things() {
+    expect(
+        "unknown_param.xml",
+        &wrap("<shape type=\"sphere\">\n  <float name=\"radiuss\" value=\"1\"/>\n</shape>"),
+        5,
+        "<float name=\"radiuss\"",
+        "unsupported parameter \"radiuss\" for <shape type=\"sphere\"> (supported: to_world, flip_normals, center, radius)",
+    );
+    expect(
+        "unknown_tag.xml",
+        &wrap("<shape type=\"sphere\">\n  <foo/>\n</shape>"),
+        5,
+        "<foo>",
+        "unknown or unsupported element <foo>",
+    );
+    expect(
+        "unknown_bsdf.xml",
+        &wrap("<bsdf type=\"plastic\"/>"),
+        4,
+        "<bsdf type=\"plastic\">",
+        "supported: diffuse, conductor, roughconductor, dielectric, twosided",
+    );
+    expect(
+        "envmap.xml",
+        &wrap(
+            "<emitter type=\"envmap\">\n<string name=\"filename\" value=\"sky.exr\"/>\n</emitter>",
+        ),
+        4,
+        "<emitter type=\"envmap\">",
+        "not supported",
+    );
+    expect(
+        "texture.xml",
+        &wrap(
+            "<shape type=\"cube\"><bsdf type=\"diffuse\">\n<texture type=\"bitmap\" name=\"reflectance\"/>\n</bsdf></shape>",
+        ),
+        5,
+        "<texture type=\"bitmap\"",
+        "cannot contain",
+    );
+    expect(
+        "aniso.xml",
+        &wrap(
+            "<bsdf type=\"roughconductor\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/>\n</bsdf>",
+        ),
+        5,
+        "alpha_u",
+        "anisotropic",
+    );
+    expect(
+        "material.xml",
+        &wrap("<bsdf type=\"conductor\">\n<string name=\"material\" value=\"Xx\"/>\n</bsdf>"),
+        5,
+        "material",
+        "supported: none, Ag, Al, Au, Cr, Cu",
+    );
+    expect(
+        "spectrum_pairs.xml",
+        &wrap(
+            "<bsdf type=\"diffuse\">\n<spectrum name=\"reflectance\" value=\"400:0.1, 700:0.5\"/>\n</bsdf>",
+        ),
+        5,
+        "<spectrum name=\"reflectance\"",
+        "uniform spectra",
+    );
+    expect(
+        "top_area.xml",
+        &wrap("<emitter type=\"area\"/>"),
+        4,
+        "<emitter type=\"area\">",
+        "inside the <shape>",
+    );
+    expect(
+        "filter.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n<rfilter type=\"mitchell\"/>\n</film>\n</sensor>\n</scene>",
+        5,
+        "<rfilter type=\"mitchell\">",
+        "supported: box, tent, gaussian",
+    );
+}
+
+#[test]
+fn malformed_values() {
+    expect(
+        "missing_attr.xml",
+        &wrap("<shape type=\"sphere\">\n<float value=\"1\"/>\n</shape>"),
+        5,
+        "<float",
+        "missing required attribute \"name\"",
+    );
+    expect(
+        "missing_type.xml",
+        &wrap("<shape>\n</shape>"),
+        4,
+        "<shape>",
+        "missing required attribute \"type\"",
+    );
+    expect(
+        "bad_number.xml",
+        &wrap("<shape type=\"sphere\">\n<float name=\"radius\" value=\"1.5x\"/>\n</shape>"),
+        5,
+        "<float name=\"radius\"",
+        "could not parse \"1.5x\"",
+    );
+    expect(
+        "nan.xml",
+        &wrap("<shape type=\"sphere\">\n<float name=\"radius\" value=\"NaN\"/>\n</shape>"),
+        5,
+        "<float name=\"radius\"",
+        "not a finite number",
+    );
+    expect(
+        "nan_rgb.xml",
+        &wrap(
+            "<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"0.5, nan, 0.5\"/>\n</bsdf>",
+        ),
+        5,
+        "<rgb name=\"reflectance\"",
+        "not a finite number",
+    );
+    expect(
+        "negative_radius.xml",
+        &wrap("<shape type=\"sphere\">\n<float name=\"radius\" value=\"-1\"/>\n</shape>"),
+        5,
+        "<float name=\"radius\"",
+        "radius must be positive",
+    );
+    expect(
+        "wrong_type.xml",
+        &wrap("<shape type=\"sphere\">\n<string name=\"radius\" value=\"1\"/>\n</shape>"),
+        5,
+        "<string name=\"radius\"",
+        "must be given as <float>",
+    );
+    expect(
+        "bright.xml",
+        &wrap("<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"1.2\"/>\n</bsdf>"),
+        5,
+        "<rgb name=\"reflectance\"",
+        "must lie in [0, 1]",
+    );
+    expect(
+        "rgb_count.xml",
+        &wrap("<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"0.1 0.2\"/>\n</bsdf>"),
+        5,
+        "<rgb name=\"reflectance\"",
+        "expected 1 or 3 numbers",
+    );
+    expect(
+        "point_partial.xml",
+        &wrap("<shape type=\"sphere\">\n<point name=\"center\" x=\"1\" y=\"2\"/>\n</shape>"),
+        5,
+        "<point name=\"center\"",
+        "missing attribute \"z\"",
+    );
+    expect(
+        "bool.xml",
+        &wrap("<shape type=\"cube\">\n<boolean name=\"flip_normals\" value=\"yes\"/>\n</shape>"),
+        5,
+        "<boolean name=\"flip_normals\"",
+        "boolean",
+    );
+    expect(
+        "duplicate_param.xml",
+        &wrap(
+            "<shape type=\"sphere\">\n<float name=\"radius\" value=\"1\"/>\n<float name=\"radius\" value=\"2\"/>\n</shape>",
+        ),
+        6,
+        "<float name=\"radius\"",
+        "specified twice",
+    );
+}
+
+#[test]
+fn transforms() {
+    expect(
+        "singular.xml",
+        &wrap(
+            "<shape type=\"rectangle\">\n<transform name=\"to_world\">\n<scale x=\"0\"/>\n</transform>\n</shape>",
+        ),
+        5,
+        "<transform name=\"to_world\">",
+        "not invertible",
+    );
+    expect(
+        "bad_lookat.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<transform name=\"to_world\">\n<lookat origin=\"0 0 0\" target=\"0 1 0\" up=\"0 1 0\"/>\n</transform>\n</sensor>\n</scene>",
+        5,
+        "<lookat>",
+        "invalid lookat",
+    );
+    expect(
+        "camera_scale.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<transform name=\"to_world\">\n<scale value=\"2\"/>\n</transform>\n</sensor>\n</scene>",
+        4,
+        "<transform name=\"to_world\">",
+        "must not scale",
+    );
+    expect(
+        "sphere_stretch.xml",
+        &wrap(
+            "<shape type=\"sphere\">\n<transform name=\"to_world\">\n<scale x=\"2\"/>\n</transform>\n</shape>",
+        ),
+        5,
+        "<transform name=\"to_world\">",
+        "scale uniformly",
+    );
+    expect(
+        "op_outside.xml",
+        &wrap("<shape type=\"cube\">\n<translate x=\"1\"/>\n</shape>"),
+        5,
+        "<translate>",
+        "only appear inside <transform>",
+    );
+    expect(
+        "matrix_count.xml",
+        &wrap(
+            "<shape type=\"cube\">\n<transform name=\"to_world\">\n<matrix value=\"1 0 0 0 1 0\"/>\n</transform>\n</shape>",
+        ),
+        6,
+        "<matrix>",
+        "9 or 16 values",
+    );
+}
+
+#[test]
+fn film_and_settings() {
+    let film = |body: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n{body}\n</film>\n</sensor>\n</scene>"
+        )
+    };
+    expect(
+        "zero_width.xml",
+        &film("<integer name=\"width\" value=\"0\"/>"),
+        5,
+        "<integer name=\"width\"",
+        "must lie in [1, 65536]",
+    );
+    expect(
+        "zero_height.xml",
+        &film("<integer name=\"height\" value=\"0\"/>"),
+        5,
+        "<integer name=\"height\"",
+        "must lie in [1, 65536]",
+    );
+    expect(
+        "huge_film.xml",
+        &film(
+            "<integer name=\"width\" value=\"65536\"/><integer name=\"height\" value=\"65536\"/>",
+        ),
+        4,
+        "<film type=\"hdrfilm\">",
+        "more than the supported",
+    );
+    expect(
+        "float_width.xml",
+        &film("<float name=\"width\" value=\"64\"/>"),
+        5,
+        "<float name=\"width\"",
+        "must be given as <integer>",
+    );
+    expect(
+        "max_depth.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\">\n<integer name=\"max_depth\" value=\"-2\"/>\n</integrator>\n<sensor type=\"perspective\"/>\n</scene>",
+        3,
+        "<integer name=\"max_depth\"",
+        "must lie in [-1,",
+    );
+    expect(
+        "fov.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"180\"/>\n</sensor>\n</scene>",
+        4,
+        "<float name=\"fov\"",
+        "strictly between 0 and 180",
+    );
+}
+
+#[test]
+fn xml_structure() {
+    expect(
+        "unclosed.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<shape type=\"cube\">\n</scene>\n",
+        4,
+        "",
+        "XML syntax error",
+    );
+    expect(
+        "truncated.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<shape type=\"cube\">\n",
+        3,
+        "",
+        "XML syntax error",
+    );
+    expect(
+        "old_version.xml",
+        "<scene version=\"0.6.0\">\n</scene>",
+        1,
+        "<scene>",
+        "unsupported scene version \"0.6.0\" (supported: 2.x and 3.x)",
+    );
+    expect(
+        "no_version.xml",
+        "<scene>\n</scene>",
+        1,
+        "<scene>",
+        "missing required attribute \"version\"",
+    );
+    expect(
+        "bad_version.xml",
+        "<scene version=\"three\">\n</scene>",
+        1,
+        "<scene>",
+        "invalid version",
+    );
+    expect(
+        "text.xml",
+        &wrap("<shape type=\"cube\">\nhello\n</shape>"),
+        5,
+        "",
+        "unexpected text \"hello\"",
+    );
+    expect(
+        "root.xml",
+        "<shape type=\"cube\"/>",
+        1,
+        "<shape type=\"cube\">",
+        "root element must be <scene>",
+    );
+    expect(
+        "no_integrator.xml",
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"/>\n</scene>",
+        1,
+        "<scene>",
+        "no <integrator>",
+    );
+    expect(
+        "no_sensor.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n</scene>",
+        1,
+        "<scene>",
+        "no <sensor>",
+    );
+    expect(
+        "two_sensors.xml",
+        &wrap("<sensor type=\"perspective\"/>"),
+        4,
+        "<sensor type=\"perspective\">",
+        "only one <sensor>",
+    );
+    expect(
+        "two_bsdfs.xml",
+        &wrap(
+            "<shape type=\"cube\">\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/>\n</shape>",
+        ),
+        6,
+        "<bsdf type=\"diffuse\">",
+        "cannot contain",
+    );
+}
+
+#[test]
+fn references_and_parameters() {
+    expect(
+        "missing_ref.xml",
+        &wrap("<shape type=\"cube\">\n<ref id=\"nope\"/>\n</shape>"),
+        5,
+        "<ref id=\"nope\">",
+        "no object with id \"nope\"",
+    );
+    expect(
+        "ref_to_shape.xml",
+        &wrap("<shape type=\"cube\" id=\"a\"/>\n<shape type=\"cube\">\n<ref id=\"a\"/>\n</shape>"),
+        6,
+        "<ref id=\"a\">",
+        "names a <shape>",
+    );
+    expect(
+        "cycle.xml",
+        &wrap("<bsdf type=\"twosided\" id=\"a\">\n<ref id=\"a\"/>\n</bsdf>"),
+        4,
+        "<bsdf type=\"twosided\" id=\"a\">",
+        "circular reference",
+    );
+    expect(
+        "duplicate_id.xml",
+        &wrap("<bsdf type=\"diffuse\" id=\"a\"/>\n<bsdf type=\"diffuse\" id=\"a\"/>"),
+        5,
+        "<bsdf type=\"diffuse\" id=\"a\">",
+        "duplicate id \"a\"",
+    );
+    expect(
+        "undefined_param.xml",
+        &wrap("<shape type=\"$kind\"/>"),
+        4,
+        "<shape>",
+        "undefined parameter $kind",
+    );
+    expect(
+        "default_after_use.xml",
+        &wrap("<shape type=\"$kind\"/>\n<default name=\"kind\" value=\"cube\"/>"),
+        4,
+        "<shape>",
+        "undefined parameter $kind",
+    );
+    expect(
+        "twosided_glass.xml",
+        &wrap("<bsdf type=\"twosided\">\n<bsdf type=\"dielectric\"/>\n</bsdf>"),
+        5,
+        "<bsdf type=\"dielectric\">",
+        "one-sided reflective",
+    );
+}
+
+#[test]
+fn meshes() {
+    expect(
+        "missing_mesh.xml",
+        &wrap(
+            "<shape type=\"obj\">\n<string name=\"filename\" value=\"meshes/nope.obj\"/>\n</shape>",
+        ),
+        5,
+        "<string name=\"filename\" value=\"meshes/nope.obj\">",
+        "nope.obj\" not found",
+    );
+    expect(
+        "bad_obj.xml",
+        &wrap(
+            "<shape type=\"obj\">\n<string name=\"filename\" value=\"meshes/bad.obj\"/>\n</shape>",
+        ),
+        5,
+        "<string name=\"filename\"",
+        "bad.obj\": line 4:",
+    );
+    expect(
+        "corrupt_ply.xml",
+        &wrap(
+            "<shape type=\"ply\">\n<string name=\"filename\" value=\"meshes/corrupt.ply\"/>\n</shape>",
+        ),
+        5,
+        "<string name=\"filename\"",
+        "corrupt.ply\": face 0 uses vertex 5",
+    );
+    expect(
+        "huge_ply.xml",
+        &wrap(
+            "<shape type=\"ply\">\n<string name=\"filename\" value=\"meshes/huge_header.ply\"/>\n</shape>",
+        ),
+        5,
+        "<string name=\"filename\"",
+        "huge_header.ply\": header promises more data than the file holds",
+    );
+    expect(
+        "no_filename.xml",
+        &wrap("<shape type=\"ply\"/>"),
+        4,
+        "<shape type=\"ply\">",
+        "missing required parameter \"filename\"",
+    );
+}
+
+#[test]
+fn errors_in_included_files_name_the_included_file() {
+    write_scene(
+        "included_bad.xml",
+        "<scene version=\"3.0.0\">\n\n<shape type=\"torus\"/>\n</scene>\n",
+    );
+    let err = error(
+        "includer.xml",
+        &wrap("<include filename=\"included_bad.xml\"/>"),
+    );
+    assert!(err.file.ends_with("included_bad.xml"), "{err}");
+    assert_eq!(err.line, 3, "{err}");
+    assert!(
+        err.message.contains("unknown shape type \"torus\""),
+        "{err}"
+    );
+
+    expect(
+        "include_missing.xml",
+        &wrap("<include filename=\"nowhere.xml\"/>"),
+        4,
+        "<include>",
+        "not found",
+    );
+    expect(
+        "include_self.xml",
+        &wrap("<include filename=\"include_self.xml\"/>"),
+        4,
+        "<include>",
+        "deeper than",
+    );
+}

@@ -1,0 +1,377 @@
+//! Mitsuba defaults and the less common features of the supported subset.
+
+mod common;
+
+use common::{close, data_dir, load, triangle_normal, wrap, write_scene};
+use glam::{Vec2, Vec3};
+use scene::{
+    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc, SamplerDesc,
+    SamplerKind, SceneDesc, SphereDesc,
+};
+
+fn ok(name: &str, text: &str) -> SceneDesc {
+    load(name, text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn only_mesh(desc: &SceneDesc) -> &MeshDesc {
+    match &desc.shapes[0].geometry {
+        Geometry::Mesh(m) => m,
+        Geometry::Sphere(_) => panic!("not a mesh"),
+    }
+}
+
+#[test]
+fn mitsuba_defaults() {
+    let desc = ok("defaults.xml", &wrap("<shape type=\"sphere\"/>"));
+    assert_eq!(desc.integrator.kind, IntegratorKind::Path);
+    assert_eq!(desc.integrator.max_depth, -1);
+    assert_eq!(desc.integrator.rr_depth, 5);
+    assert!(!desc.integrator.hide_emitters);
+    // 50 mm on 36×24 mm film: diagonal fov 2 atan(43.2666 / 100) = 46.793°.
+    assert_eq!(desc.sensor.fov_axis, FovAxis::Diagonal);
+    assert!((desc.sensor.fov_deg - 46.793).abs() < 1e-4);
+    // On a 768×576 image that diagonal gives a horizontal fov of 38.18484°.
+    assert!((desc.sensor.x_fov_deg(768, 576) - 38.18484).abs() < 1e-3);
+    assert_eq!(desc.sensor.near_clip, 0.01);
+    assert_eq!(desc.sensor.far_clip, 1e4);
+    assert_eq!(desc.sensor.to_world, glam::Mat4::IDENTITY);
+    assert!(desc.sensor.lens.is_none());
+    assert_eq!((desc.film.width, desc.film.height), (768, 576));
+    assert_eq!(desc.film.filter, FilterDesc::Gaussian { stddev: 0.5 });
+    assert_eq!(
+        desc.sampler,
+        SamplerDesc {
+            kind: SamplerKind::Independent,
+            sample_count: 4,
+            seed: 0
+        }
+    );
+    assert_eq!(
+        desc.shapes[0].geometry,
+        Geometry::Sphere(SphereDesc {
+            center: Vec3::ZERO,
+            radius: 1.0,
+            flip_normals: false
+        })
+    );
+    assert_eq!(
+        desc.bsdfs[desc.shapes[0].bsdf],
+        BsdfDesc::Diffuse {
+            reflectance: Vec3::splat(0.5)
+        }
+    );
+    assert!(desc.shapes[0].emitter.is_none());
+    assert!(desc.emitters.is_empty());
+}
+
+#[test]
+fn bsdf_defaults_and_named_iors() {
+    let desc = ok(
+        "bsdf_defaults.xml",
+        &wrap(
+            "<bsdf type=\"dielectric\"/>
+<bsdf type=\"dielectric\"><string name=\"int_ior\" value=\"Diamond\"/><string name=\"ext_ior\" value=\"vacuum\"/></bsdf>
+<bsdf type=\"roughconductor\"/>
+<bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.3\"/><float name=\"alpha_v\" value=\"0.3\"/><boolean name=\"sample_visible\" value=\"false\"/></bsdf>
+<bsdf type=\"conductor\"><float name=\"eta\" value=\"1.5\"/><float name=\"k\" value=\"2\"/><spectrum name=\"specular_reflectance\" value=\"0.9\"/></bsdf>
+<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/></bsdf>
+<bsdf type=\"roughconductor\"><string name=\"material\" value=\"Au\"/></bsdf>",
+        ),
+    );
+    let b = &desc.bsdfs;
+    assert_eq!(
+        b[0],
+        BsdfDesc::Dielectric {
+            int_ior: 1.5046,
+            ext_ior: 1.000277,
+            specular_reflectance: Vec3::ONE,
+            specular_transmittance: Vec3::ONE
+        }
+    );
+    assert!(
+        matches!(b[1], BsdfDesc::Dielectric { int_ior, ext_ior, .. } if int_ior == 2.419 && ext_ior == 1.0)
+    );
+    assert_eq!(
+        b[2],
+        BsdfDesc::RoughConductor {
+            distribution: scene::MicrofacetDistribution::Beckmann,
+            alpha: 0.1,
+            eta: Vec3::ZERO,
+            k: Vec3::ONE,
+            specular_reflectance: Vec3::ONE
+        }
+    );
+    assert!(matches!(b[3], BsdfDesc::RoughConductor { alpha, .. } if alpha == 0.3));
+    assert_eq!(
+        b[4],
+        BsdfDesc::Conductor {
+            eta: Vec3::splat(1.5),
+            k: Vec3::splat(2.0),
+            specular_reflectance: Vec3::splat(0.9)
+        }
+    );
+    let BsdfDesc::TwoSided { front, back } = &b[5] else {
+        panic!("{:?}", b[5])
+    };
+    assert!(matches!(**front, BsdfDesc::Diffuse { .. }));
+    assert!(matches!(**back, BsdfDesc::Conductor { .. }));
+    // Gold: Mitsuba's widely quoted RGB constants are eta ≈ (0.143, 0.375, 1.442), k ≈ (3.983, 2.386, 1.603).
+    let BsdfDesc::RoughConductor { eta, k, .. } = b[6] else {
+        panic!("{:?}", b[6])
+    };
+    assert!(close(eta, Vec3::new(0.143, 0.375, 1.442), 2e-3), "{eta}");
+    assert!(close(k, Vec3::new(3.983, 2.386, 1.603), 2e-3), "{k}");
+}
+
+#[test]
+fn thin_lens_and_focal_length() {
+    let desc = ok(
+        "thinlens.xml",
+        "<scene version=\"2.1.0\">
+<integrator type=\"direct\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>
+<sensor type=\"thinlens\">
+  <float name=\"aperture_radius\" value=\"0.05\"/>
+  <float name=\"focus_distance\" value=\"4\"/>
+  <string name=\"focal_length\" value=\"35mm\"/>
+  <float name=\"near_clip\" value=\"0.1\"/>
+  <film type=\"hdrfilm\"><rfilter type=\"box\"/></film>
+</sensor>
+</scene>",
+    );
+    assert_eq!(desc.integrator.kind, IntegratorKind::Direct);
+    assert_eq!(desc.integrator.max_depth, 2);
+    assert!(desc.integrator.hide_emitters);
+    let lens = desc.sensor.lens.unwrap();
+    assert_eq!(lens.aperture_radius, 0.05);
+    assert_eq!(lens.focus_distance, 4.0);
+    // 35 mm: 2 atan(43.2666 / 70) = 63.43997° diagonal.
+    assert!((desc.sensor.fov_deg - 63.43997).abs() < 1e-3);
+    assert_eq!(desc.sensor.fov_axis, FovAxis::Diagonal);
+    assert_eq!(desc.sensor.near_clip, 0.1);
+    assert_eq!(desc.film.filter, FilterDesc::Box);
+
+    // Without focus_distance the lens focuses at far_clip, as Mitsuba's projective cameras do.
+    let desc = ok(
+        "thinlens2.xml",
+        "<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"thinlens\"><float name=\"aperture_radius\" value=\"0\"/><float name=\"far_clip\" value=\"50\"/><float name=\"fov\" value=\"30\"/><string name=\"fov_axis\" value=\"Y\"/></sensor></scene>",
+    );
+    assert_eq!(desc.sensor.lens.unwrap().focus_distance, 50.0);
+    assert_eq!(desc.sensor.fov_axis, FovAxis::Y);
+    // fov 30° on y of a 4:3 image: x_fov = 2 atan(tan 15° · 4/3) = 39.32012°.
+    assert!((desc.sensor.x_fov_deg(800, 600) - 39.32012).abs() < 1e-3);
+}
+
+#[test]
+fn emitters() {
+    let desc = ok(
+        "emitters.xml",
+        &wrap(
+            "<emitter type=\"point\"><transform name=\"to_world\"><translate x=\"1\" y=\"2\" z=\"3\"/></transform></emitter>
+<emitter type=\"constant\"><spectrum name=\"radiance\" value=\"2\"/></emitter>
+<emitter type=\"constant\"><float name=\"radiance\" value=\"2\"/></emitter>
+<emitter type=\"point\"/>
+<shape type=\"rectangle\"><emitter type=\"area\"/></shape>",
+        ),
+    );
+    assert_eq!(
+        desc.emitters[0],
+        EmitterDesc::Point {
+            position: Vec3::new(1.0, 2.0, 3.0),
+            intensity: Vec3::ONE
+        }
+    );
+    // A uniform emission spectrum is 2 · xyz_to_srgb(1, 1, 1) in Mitsuba's RGB variants.
+    let EmitterDesc::Constant { radiance } = desc.emitters[1] else {
+        panic!()
+    };
+    assert!(close(
+        radiance,
+        2.0 * Vec3::new(1.204794, 0.948291, 0.908916),
+        1e-5
+    ));
+    assert_eq!(
+        desc.emitters[2],
+        EmitterDesc::Constant {
+            radiance: Vec3::splat(2.0)
+        }
+    );
+    assert_eq!(
+        desc.emitters[3],
+        EmitterDesc::Point {
+            position: Vec3::ZERO,
+            intensity: Vec3::ONE
+        }
+    );
+    assert_eq!(desc.shapes[0].emitter.unwrap().radiance, Vec3::ONE);
+}
+
+#[test]
+fn sampler_counts_follow_mitsuba_rounding() {
+    let sampler = |kind, sample_count| SamplerDesc {
+        kind,
+        sample_count,
+        seed: 0,
+    };
+    assert_eq!(
+        sampler(SamplerKind::Independent, 10).mitsuba_sample_count(),
+        10
+    );
+    assert_eq!(
+        sampler(SamplerKind::Stratified, 10).mitsuba_sample_count(),
+        16
+    );
+    assert_eq!(
+        sampler(SamplerKind::Stratified, 16).mitsuba_sample_count(),
+        16
+    );
+    assert_eq!(
+        sampler(SamplerKind::Multijitter, 10).mitsuba_sample_count(),
+        12
+    );
+    assert_eq!(
+        sampler(SamplerKind::Ldsampler, 10).mitsuba_sample_count(),
+        16
+    );
+    assert_eq!(
+        sampler(SamplerKind::Ldsampler, 17).mitsuba_sample_count(),
+        64
+    );
+    assert_eq!(sampler(SamplerKind::Ldsampler, 1).mitsuba_sample_count(), 4);
+}
+
+#[test]
+fn escaped_dollar_and_include_with_forward_reference() {
+    write_scene(
+        "materials.xml",
+        "<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\" id=\"cost\\$\"><rgb name=\"reflectance\" value=\"0.2\"/></bsdf>\n</scene>",
+    );
+    let desc = ok(
+        "includes.xml",
+        &wrap(
+            "<shape type=\"cube\"><ref id=\"cost\\$\"/></shape>\n<include filename=\"materials.xml\"/>",
+        ),
+    );
+    assert_eq!(
+        desc.bsdfs[desc.shapes[0].bsdf],
+        BsdfDesc::Diffuse {
+            reflectance: Vec3::splat(0.2)
+        }
+    );
+}
+
+#[test]
+fn ply_binary_endianness_and_ascii_polygons() {
+    let load_ply = |file: &str, extra: &str| {
+        ok(
+            &format!("ply_{}.xml", file.replace('.', "_")),
+            &wrap(&format!(
+                "<shape type=\"ply\"><string name=\"filename\" value=\"meshes/{file}\"/>{extra}</shape>"
+            )),
+        )
+    };
+    let le = load_ply("quad_le.ply", "");
+    let be = load_ply("quad_be.ply", "");
+    assert_eq!(only_mesh(&le), only_mesh(&be));
+    let m = only_mesh(&le);
+    assert_eq!(m.positions[4], Vec3::new(0.5, 0.5, 1.0));
+    assert_eq!(m.uvs.as_ref().unwrap()[1], Vec2::new(1.0, 0.0));
+
+    let flipped = load_ply(
+        "quad_le.ply",
+        "<boolean name=\"flip_tex_coords\" value=\"true\"/>",
+    );
+    assert_eq!(
+        only_mesh(&flipped).uvs.as_ref().unwrap()[1],
+        Vec2::new(1.0, 1.0)
+    );
+
+    let pentagon = load_ply("pentagon.ply", "");
+    let m = only_mesh(&pentagon);
+    assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3], [0, 3, 4]]);
+    assert_eq!(m.uvs.as_ref().unwrap()[3], Vec2::new(0.5, 1.0));
+    // No normals in the file and no face_normals: smooth normals are computed (a flat polygon).
+    assert!(
+        m.normals
+            .as_ref()
+            .unwrap()
+            .iter()
+            .all(|n| close(*n, Vec3::Z, 1e-6))
+    );
+
+    let faceted = load_ply(
+        "pentagon.ply",
+        "<boolean name=\"face_normals\" value=\"true\"/>",
+    );
+    assert!(only_mesh(&faceted).normals.is_none());
+}
+
+#[test]
+fn obj_without_normals_gets_angle_weighted_normals() {
+    let desc = ok(
+        "obj_smooth.xml",
+        &wrap("<shape type=\"obj\"><string name=\"filename\" value=\"meshes/box.obj\"/></shape>"),
+    );
+    let m = only_mesh(&desc);
+    assert_eq!(m.triangles.len(), 12);
+    let normals = m.normals.as_ref().unwrap();
+    // Each corner touches three faces with 90° of angle each: the normal is the diagonal.
+    let corner = m.positions.iter().position(|p| *p == Vec3::ONE).unwrap();
+    assert!(close(normals[corner], Vec3::ONE.normalize(), 1e-6));
+    let origin = m.positions.iter().position(|p| *p == Vec3::ZERO).unwrap();
+    assert!(close(normals[origin], -Vec3::ONE.normalize(), 1e-6));
+}
+
+#[test]
+fn mirrored_mesh_keeps_normals_consistent() {
+    let desc = ok(
+        "mirror.xml",
+        &wrap(
+            "<shape type=\"ply\"><string name=\"filename\" value=\"meshes/quad_le.ply\"/>
+<transform name=\"to_world\"><scale x=\"-1\"/></transform></shape>",
+        ),
+    );
+    let m = only_mesh(&desc);
+    let normals = m.normals.as_ref().unwrap();
+    for i in 0..m.triangles.len() {
+        let g = triangle_normal(m, i);
+        let n = normals[m.triangles[i][0] as usize];
+        assert!(g.dot(n) > 0.0, "triangle {i}: geometric {g}, shading {n}");
+    }
+    // The quad (z = 0) still faces +z after mirroring x.
+    assert!(close(triangle_normal(m, 0), Vec3::Z, 1e-6));
+    assert_eq!(m.positions[1], Vec3::new(-1.0, 0.0, 0.0));
+}
+
+#[test]
+fn sphere_flip_and_rotation() {
+    let desc = ok(
+        "sphere.xml",
+        &wrap(
+            "<shape type=\"sphere\"><boolean name=\"flip_normals\" value=\"true\"/><point name=\"center\" value=\"1\"/>
+<transform name=\"to_world\"><rotate z=\"1\" angle=\"90\"/><scale value=\"3\"/></transform></shape>",
+        ),
+    );
+    let Geometry::Sphere(s) = desc.shapes[0].geometry else {
+        panic!()
+    };
+    // (1, 1, 1) rotated 90° about z is (−1, 1, 1), then scaled by 3.
+    assert!(close(s.center, Vec3::new(-3.0, 3.0, 3.0), 1e-5));
+    assert!((s.radius - 3.0).abs() < 1e-6);
+    assert!(s.flip_normals);
+}
+
+#[test]
+fn fixture_directory_is_resolved_relative_to_the_scene() {
+    // Loading from another working directory must still find meshes next to the scene file.
+    let desc = scene::parse_file(&data_dir().join("cornell.xml"), &[]).unwrap();
+    assert!(desc.source.ends_with("cornell.xml"));
+}
+
+#[test]
+fn byte_order_mark_is_accepted() {
+    let desc = ok(
+        "bom.xml",
+        "\u{feff}<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\"/></scene>",
+    );
+    assert!(desc.shapes.is_empty());
+}
