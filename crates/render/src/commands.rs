@@ -3,7 +3,7 @@
 use std::fmt;
 use std::io::Write;
 
-use crate::cli::{Command, RenderArgs};
+use crate::cli::Command;
 use crate::diff::DiffReport;
 
 /// A failed command. The exit status is 2 for bad input and 1 for anything else
@@ -45,14 +45,6 @@ pub fn run(command: &Command, out: &mut dyn Write) -> Result<(), CommandError> {
             writeln!(out, "{}", report.to_json_line())
                 .map_err(|e| CommandError::Failed(format!("cannot write the report: {e}")))
         }
-        Command::Render(args) => render(args),
+        Command::Render(args) => crate::render_command::run(args),
     }
-}
-
-/// `strata render`: the scene loader and integrators are not connected yet.
-fn render(args: &RenderArgs) -> Result<(), CommandError> {
-    Err(CommandError::Failed(format!(
-        "cannot render '{}': the render command is not wired to the scene loader and integrators yet",
-        args.scene.display()
-    )))
 }

@@ -32,7 +32,9 @@ pub mod filter;
 pub mod image;
 pub mod metrics;
 pub mod progress;
+mod render_command;
 pub mod stats;
+pub mod technique;
 pub mod tiles;
 
 #[cfg(test)]

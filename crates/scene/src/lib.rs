@@ -39,8 +39,11 @@
 
 #![warn(missing_docs)]
 
+mod build;
+mod camera;
 mod desc;
 mod error;
+mod features;
 mod ior;
 mod loader;
 mod mesh;
@@ -55,7 +58,10 @@ pub use desc::{
     IntegratorDesc, IntegratorKind, MeshDesc, MicrofacetDistribution, SamplerDesc, SamplerKind,
     SceneDesc, SensorDesc, ShapeDesc, SphereDesc, ThinLensDesc,
 };
+pub use build::{RenderScene, build};
+pub use camera::{Camera, ThinLens};
 pub use error::LoadError;
+pub use features::SceneFeatures;
 
 /// Loads the Mitsuba 3 scene file at `path`.
 ///
@@ -64,4 +70,9 @@ pub use error::LoadError;
 /// Relative mesh and include paths are resolved against the directory of the file that names them.
 pub fn parse_file(path: &Path, overrides: &[(String, String)]) -> Result<SceneDesc, LoadError> {
     loader::load(path, overrides)
+}
+
+/// Loads the scene file at `path` (see [`parse_file`]) and builds it into a [`RenderScene`].
+pub fn load(path: &Path, overrides: &[(String, String)]) -> Result<RenderScene, LoadError> {
+    build(parse_file(path, overrides)?)
 }

@@ -1,0 +1,153 @@
+//! Which light transport, sampler and budget a `strata render` runs with: the command line's
+//! flags on top of the scene file's settings, and the `auto` choice from the scene's features.
+
+use crate::cli::{IntegratorPreset, RenderArgs, SamplerKind as SamplerFlag};
+use crate::driver::RenderBudget;
+use integrators::reference::ReferenceSettings;
+use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+use sampling::sampler::SamplerKind;
+use scene::{IntegratorKind, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
+
+/// Candidates per RIS light choice in the `ris` preset and in `auto`.
+pub const RIS_CANDIDATES: u32 = 8;
+
+/// With at least this many lights, `auto` selects lights by RIS rather than by power.
+pub const AUTO_RIS_MIN_LIGHTS: usize = 16;
+
+/// Nominal sample count given to samplers when only a time budget bounds the render: strata are
+/// laid out for this many samples, and any prefix of them is still unbiased.
+pub const TIME_BUDGET_NOMINAL_SPP: u32 = 4096;
+
+/// The light transport algorithm of a render.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Transport {
+    /// The reference path tracer (no tricks).
+    Reference(ReferenceSettings),
+    /// The variance-reduction path tracer with these switches.
+    Path(PathSettings),
+}
+
+impl Transport {
+    /// Names of the techniques that are on, for the stats and reports.
+    pub fn technique_names(&self) -> Vec<String> {
+        match self {
+            Transport::Reference(_) => vec!["reference".to_string()],
+            Transport::Path(settings) => settings.technique_names(),
+        }
+    }
+}
+
+/// Everything that decides a render besides the scene itself.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderPlan {
+    /// The light transport.
+    pub transport: Transport,
+    /// The sampling pattern.
+    pub sampler: SamplerKind,
+    /// The sampler seed.
+    pub seed: u32,
+    /// When to stop.
+    pub budget: RenderBudget,
+    /// Sample count the sampler lays its pattern out for.
+    pub sampler_spp: u32,
+}
+
+/// The plan for rendering `desc` (with `features`) as `args` ask.
+pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> RenderPlan {
+    let max_depth = match args.max_depth {
+        Some(depth) => Some(depth),
+        None if desc.integrator.kind == IntegratorKind::Direct => Some(2),
+        None => u32::try_from(desc.integrator.max_depth).ok(),
+    };
+    let hide_emitters = desc.integrator.hide_emitters;
+    let roulette = Some(RussianRoulette {
+        start_depth: desc.integrator.rr_depth.max(1),
+    });
+    let nee = PathSettings {
+        max_depth,
+        hide_emitters,
+        sample_lights: true,
+        sample_bsdf: true,
+        mis: Mis::Off,
+        light_selection: LightSelectionMode::Power,
+        russian_roulette: roulette,
+    };
+    let mis = PathSettings {
+        mis: Mis::Power,
+        ..nee
+    };
+    let mut transport = match args.integrator {
+        IntegratorPreset::Reference => Transport::Reference(ReferenceSettings {
+            max_depth,
+            hide_emitters,
+        }),
+        IntegratorPreset::Nee => Transport::Path(nee),
+        IntegratorPreset::Mis => Transport::Path(mis),
+        IntegratorPreset::Ris => Transport::Path(PathSettings {
+            light_selection: LightSelectionMode::Ris {
+                candidates: RIS_CANDIDATES,
+            },
+            ..mis
+        }),
+        IntegratorPreset::Auto => Transport::Path(auto_settings(mis, features)),
+    };
+    if let (Transport::Path(settings), Some(rr)) = (&mut transport, args.rr) {
+        settings.russian_roulette = if rr.is_on() { roulette } else { None };
+    }
+
+    let sampler = match args.sampler {
+        Some(SamplerFlag::Independent) => SamplerKind::Independent,
+        Some(SamplerFlag::Stratified) => SamplerKind::Stratified,
+        Some(SamplerFlag::BlueNoise) => SamplerKind::BlueNoise,
+        None => match desc.sampler.kind {
+            SceneSampler::Independent => SamplerKind::Independent,
+            SceneSampler::Stratified | SceneSampler::Multijitter | SceneSampler::Ldsampler => {
+                SamplerKind::Stratified
+            }
+        },
+    };
+    let seed = args.seed.map_or(desc.sampler.seed, fold_seed);
+    let budget = match (args.spp, args.time) {
+        (None, None) => RenderBudget::spp(desc.sampler.sample_count),
+        (spp, time) => RenderBudget {
+            max_spp: spp,
+            max_seconds: time,
+        },
+    };
+    RenderPlan {
+        transport,
+        sampler,
+        seed,
+        budget,
+        sampler_spp: budget.max_spp.unwrap_or(TIME_BUDGET_NOMINAL_SPP),
+    }
+}
+
+/// `auto`: the MIS preset minus what the scene cannot use. No light sampling where every BSDF
+/// is a delta or there are no lights; no MIS where every light is a delta light; uniform choice
+/// (no table) for one light, RIS for many.
+pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSettings {
+    let sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
+    let light_selection = match features.light_count {
+        0 | 1 => LightSelectionMode::Uniform,
+        n if n >= AUTO_RIS_MIN_LIGHTS => LightSelectionMode::Ris {
+            candidates: RIS_CANDIDATES,
+        },
+        _ => LightSelectionMode::Power,
+    };
+    PathSettings {
+        sample_lights,
+        mis: if sample_lights && features.has_hittable_lights {
+            Mis::Power
+        } else {
+            Mis::Off
+        },
+        light_selection,
+        ..mis
+    }
+}
+
+/// A 64-bit seed from the command line folded into the sampler's 32 bits.
+fn fold_seed(seed: u64) -> u32 {
+    (seed as u32) ^ ((seed >> 32) as u32)
+}

@@ -1,0 +1,200 @@
+//! Turns a [`SceneDesc`] into the runtime objects that render it: the [`World`] and the
+//! [`Camera`].
+
+use crate::camera::{Camera, ThinLens};
+use crate::features::SceneFeatures;
+use crate::{
+    BsdfDesc, EmitterDesc, Geometry, LoadError, MicrofacetDistribution, SceneDesc, ShapeDesc,
+};
+use geometry::{Accel, Shape, Sphere, TriangleMesh};
+use integrators::World;
+use lights::{ConstantEnvironment, Light, MeshAreaLight, PointLight, SphereAreaLight};
+use materials::{
+    Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, RoughConductor,
+    TwoSided,
+};
+
+/// A scene ready to render: what light transport needs, the camera, and the description's
+/// render settings (film, sampler, integrator).
+#[derive(Debug)]
+pub struct RenderScene {
+    /// Geometry, materials and lights.
+    pub world: World,
+    /// The camera, sized for `desc.film`.
+    pub camera: Camera,
+    /// What the scene contains, for choosing techniques.
+    pub features: SceneFeatures,
+    /// The description it was built from (film, sampler and integrator settings).
+    pub desc: SceneDesc,
+}
+
+/// Builds the runtime scene from `desc`. Errors name the scene file and the shape or BSDF that
+/// cannot be built.
+pub fn build(desc: SceneDesc) -> Result<RenderScene, LoadError> {
+    let error = |element: String, message: String| LoadError {
+        file: desc.source.clone(),
+        line: 0,
+        column: 0,
+        element,
+        message,
+    };
+    let materials = desc
+        .bsdfs
+        .iter()
+        .enumerate()
+        .map(|(i, b)| build_bsdf(b).map_err(|m| error(format!("bsdf #{i}"), m)))
+        .collect::<Result<Vec<_>, _>>()?;
+
+    let mut shapes = Vec::with_capacity(desc.shapes.len());
+    let mut shape_material = Vec::with_capacity(desc.shapes.len());
+    let mut shape_light = Vec::with_capacity(desc.shapes.len());
+    let mut lights = Vec::new();
+    for shape in &desc.shapes {
+        if let Some(emitter) = shape.emitter
+            && let Some(light) = area_light(shape, emitter.radiance)
+        {
+            shape_light.push(Some(lights.len() as u32));
+            lights.push(light);
+        } else {
+            shape_light.push(None);
+        }
+        shape_material.push(shape.bsdf as u32);
+        shapes.push(runtime_shape(shape));
+    }
+    let accel = Accel::new(shapes);
+    let bounds = accel.bounds();
+    let scene_radius = if bounds.min.is_finite() && bounds.max.is_finite() {
+        0.5 * (bounds.max - bounds.min).length()
+    } else {
+        1.0
+    };
+    for emitter in &desc.emitters {
+        lights.push(match *emitter {
+            EmitterDesc::Point {
+                position,
+                intensity,
+            } => Light::Point(PointLight {
+                position,
+                intensity,
+            }),
+            EmitterDesc::Constant { radiance } => Light::Environment(ConstantEnvironment {
+                radiance,
+                scene_radius,
+            }),
+        });
+    }
+    let features = SceneFeatures::of(&materials, &lights, desc.sensor.lens.is_some());
+    let world = World::new(accel, materials, shape_material, shape_light, lights)
+        .map_err(|m| error("scene".to_string(), m))?;
+    let camera = camera(&desc);
+    Ok(RenderScene {
+        world,
+        camera,
+        features,
+        desc,
+    })
+}
+
+/// The camera for the description's sensor and film.
+fn camera(desc: &SceneDesc) -> Camera {
+    let (width, height) = (desc.film.width, desc.film.height);
+    Camera::new(
+        desc.sensor.to_world,
+        desc.sensor.x_fov_deg(width, height),
+        width,
+        height,
+        desc.sensor.near_clip,
+        desc.sensor.lens.map(|l| ThinLens {
+            aperture_radius: l.aperture_radius,
+            focus_distance: l.focus_distance,
+        }),
+    )
+}
+
+fn runtime_shape(shape: &ShapeDesc) -> Shape {
+    match &shape.geometry {
+        Geometry::Mesh(mesh) => Shape::Mesh(TriangleMesh {
+            positions: mesh.positions.clone(),
+            normals: mesh.normals.clone(),
+            uvs: mesh.uvs.clone(),
+            indices: mesh.triangles.clone(),
+        }),
+        Geometry::Sphere(s) => Shape::Sphere(Sphere {
+            center: s.center,
+            radius: s.radius,
+            flip_normals: s.flip_normals,
+        }),
+    }
+}
+
+/// The area light on `shape`, `None` when the shape has no area (it could never be seen).
+fn area_light(shape: &ShapeDesc, radiance: glam::Vec3) -> Option<Light> {
+    match &shape.geometry {
+        Geometry::Mesh(mesh) => {
+            let triangles = mesh
+                .triangles
+                .iter()
+                .map(|t| t.map(|i| mesh.positions[i as usize]))
+                .collect();
+            MeshAreaLight::new(triangles, radiance).map(Light::Mesh)
+        }
+        Geometry::Sphere(s) => Some(Light::Sphere(SphereAreaLight {
+            center: s.center,
+            radius: s.radius,
+            flip_normals: s.flip_normals,
+            radiance,
+        })),
+    }
+}
+
+fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
+    Ok(match desc {
+        BsdfDesc::Diffuse { reflectance } => Diffuse::new(*reflectance).into(),
+        BsdfDesc::Conductor {
+            eta,
+            k,
+            specular_reflectance,
+        } => Conductor::new(ComplexIor::new(*eta, *k), *specular_reflectance).into(),
+        BsdfDesc::RoughConductor {
+            distribution,
+            alpha,
+            eta,
+            k,
+            specular_reflectance,
+        } => {
+            let kind = match distribution {
+                MicrofacetDistribution::Beckmann => MicrofacetKind::Beckmann,
+                MicrofacetDistribution::Ggx => MicrofacetKind::Ggx,
+            };
+            let microfacet = Microfacet::new(kind, *alpha).map_err(|e| e.to_string())?;
+            RoughConductor::new(
+                microfacet,
+                ComplexIor::new(*eta, *k),
+                *specular_reflectance,
+            )
+            .into()
+        }
+        BsdfDesc::Dielectric {
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+        } => Dielectric::new(
+            *int_ior,
+            *ext_ior,
+            *specular_reflectance,
+            *specular_transmittance,
+        )
+        .map_err(|e| e.to_string())?
+        .into(),
+        BsdfDesc::TwoSided { front, back } => {
+            if front != back {
+                return Err(
+                    "twosided with two different nested BSDFs is not supported (give one)"
+                        .to_string(),
+                );
+            }
+            Bsdf::TwoSided(TwoSided::new(build_bsdf(front)?).map_err(|e| e.to_string())?)
+        }
+    })
+}

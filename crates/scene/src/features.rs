@@ -1,0 +1,35 @@
+//! What a scene contains, so that techniques it cannot use are left out.
+
+use lights::Light;
+use materials::Bsdf;
+
+/// The features of a scene that decide which variance-reduction techniques can pay off.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SceneFeatures {
+    /// Number of lights (area, point and environment).
+    pub light_count: usize,
+    /// True when some light can be hit by a ray (area lights, environment).
+    pub has_hittable_lights: bool,
+    /// True when some light is a delta light (point lights).
+    pub has_delta_lights: bool,
+    /// True when some material has a non-delta lobe (diffuse, rough conductor).
+    pub has_non_delta_bsdfs: bool,
+    /// True when some material is a delta BSDF (mirror, smooth dielectric).
+    pub has_delta_bsdfs: bool,
+    /// True when the camera has a thin lens.
+    pub has_lens: bool,
+}
+
+impl SceneFeatures {
+    /// The features of a scene with these materials, lights and camera.
+    pub fn of(materials: &[Bsdf], lights: &[Light], has_lens: bool) -> Self {
+        Self {
+            light_count: lights.len(),
+            has_hittable_lights: lights.iter().any(|l| !l.is_delta()),
+            has_delta_lights: lights.iter().any(Light::is_delta),
+            has_non_delta_bsdfs: materials.iter().any(|m| !m.is_delta()),
+            has_delta_bsdfs: materials.iter().any(Bsdf::is_delta),
+            has_lens,
+        }
+    }
+}
