@@ -45,7 +45,8 @@ impl RoughConductor {
         self.eval_with_normal(wo, wi, h)
     }
 
-    /// Density per steradian of [`Self::sample`]: D_wo(h) / (4 wo·h) = D(h) G1(wo, h) / (4 cos θo).
+    /// Density per steradian of [`Self::sample`]: D_wo(h) / (4 wo·h) = D(h) G1(wo, h) / (4 cos θo),
+    /// with the exact Smith G1 (see the [`crate::microfacet`] module on Beckmann).
     pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
@@ -54,7 +55,7 @@ impl RoughConductor {
         if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 {
             return 0.0;
         }
-        self.distribution.d(h) * self.distribution.smith_g1(wo, h) / (4.0 * wo.z)
+        self.distribution.visible_normal_pdf(wo, h) / (4.0 * wo.dot(h))
     }
 
     /// Reflects `wo` about a visible microfacet normal sampled from `u_dir`. `None` when `wo` is

@@ -1,12 +1,16 @@
 //! The error function and its inverse, needed by Beckmann visible-normal sampling.
 //!
-//! Both are evaluated in `f64` and rounded to `f32`; absolute error is below 2·10⁻⁷.
+//! Absolute errors are below 10⁻⁶, ample for sampling in `f32`.
 
 /// The error function erf(x) = 2/√π ∫₀ˣ e^(−t²) dt; ±1 at ±∞.
-///
-/// Uses the Chebyshev fit of erfc from Numerical Recipes (fractional error < 1.2·10⁻⁷).
 pub(crate) fn erf(x: f32) -> f32 {
-    let x = f64::from(x);
+    (1.0 - erfc(f64::from(x))) as f32
+}
+
+/// The complementary error function erfc(x) = 1 − erf(x), accurate also where it is tiny.
+///
+/// The Chebyshev fit from Numerical Recipes (fractional error < 1.2·10⁻⁷ everywhere).
+pub(crate) fn erfc(x: f64) -> f64 {
     let z = x.abs();
     let t = 1.0 / (1.0 + 0.5 * z);
     let poly = -1.265_512_23
@@ -18,14 +22,17 @@ pub(crate) fn erf(x: f32) -> f32 {
                             + t * (-1.135_203_98
                                 + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
     let erfc_abs = t * (-z * z + poly).exp();
-    let erf_abs = 1.0 - erfc_abs;
-    (if x >= 0.0 { erf_abs } else { -erf_abs }) as f32
+    if x >= 0.0 { erfc_abs } else { 2.0 - erfc_abs }
 }
 
-/// The inverse error function on (−1, 1): `erf(erfinv(y)) = y`; ±∞ at ±1, NaN outside [−1, 1].
+/// The inverse error function on (−1, 1): `erf(erfinv(y)) ≈ y`; ±∞ at ±1, NaN outside [−1, 1].
 ///
-/// Mike Giles' single-precision approximation ("Approximating the erfinv function", 2010),
-/// polished with one Newton step against [`erf`] so the two are consistent.
+/// Mike Giles' single-precision approximation ("Approximating the erfinv function", GPU
+/// Computing Gems, 2011), relative error about 4·10⁻⁷.
+#[expect(
+    clippy::excessive_precision,
+    reason = "Giles' published coefficients, kept verbatim"
+)]
 pub(crate) fn erfinv(y: f32) -> f32 {
     if y.abs() >= 1.0 {
         return if y.abs() == 1.0 {
@@ -34,7 +41,6 @@ pub(crate) fn erfinv(y: f32) -> f32 {
             f32::NAN
         };
     }
-    let y = f64::from(y);
     let mut w = -((1.0 - y) * (1.0 + y)).ln();
     let p = if w < 5.0 {
         w -= 2.5;
@@ -59,16 +65,7 @@ pub(crate) fn erfinv(y: f32) -> f32 {
         p = 1.001_674_06 + p * w;
         2.832_976_82 + p * w
     };
-    let x = p * y;
-    // One Newton step: d erf / dx = 2/√π e^(−x²).
-    let derivative = std::f64::consts::FRAC_2_SQRT_PI * (-x * x).exp();
-    let residual = f64::from(erf(x as f32)) - y;
-    let polished = if derivative > 1e-12 {
-        x - residual / derivative
-    } else {
-        x
-    };
-    polished as f32
+    p * y
 }
 
 #[cfg(test)]
@@ -79,7 +76,7 @@ mod tests {
     fn erf_matches_tabulated_values() {
         // Values from Abramowitz & Stegun, table 7.1.
         let table = [
-            (0.0_f32, 0.0_f32),
+            (0.0_f32, 0.0_f64),
             (0.1, 0.112_462_92),
             (0.5, 0.520_499_88),
             (1.0, 0.842_700_79),
@@ -88,9 +85,14 @@ mod tests {
             (3.0, 0.999_977_91),
         ];
         for (x, expected) in table {
-            assert!((erf(x) - expected).abs() < 2e-7, "erf({x}) = {}", erf(x));
-            assert!((erf(-x) + expected).abs() < 2e-7, "erf(-{x})");
+            assert!(
+                (f64::from(erf(x)) - expected).abs() < 2e-7,
+                "erf({x}) = {}",
+                erf(x)
+            );
+            assert!((f64::from(erf(-x)) + expected).abs() < 2e-7, "erf(-{x})");
         }
+        assert!((erfc(3.0) - 2.209_049_7e-5).abs() < 1e-7 * 2.2e-5);
         assert_eq!(erf(f32::INFINITY), 1.0);
         assert_eq!(erf(f32::NEG_INFINITY), -1.0);
     }
@@ -101,10 +103,10 @@ mod tests {
             let y = i as f32 / 1000.0;
             let x = erfinv(y);
             assert!(x.is_finite());
-            assert!((erf(x) - y).abs() < 3e-7, "y {y}: erf(erfinv) = {}", erf(x));
+            assert!((erf(x) - y).abs() < 5e-7, "y {y}: erf(erfinv) = {}", erf(x));
         }
         for y in [1.0 - 1e-6_f32, -(1.0 - 1e-6)] {
-            assert!((erf(erfinv(y)) - y).abs() < 3e-7);
+            assert!((erf(erfinv(y)) - y).abs() < 5e-7);
         }
         assert_eq!(erfinv(1.0), f32::INFINITY);
         assert!(erfinv(1.5).is_nan());
