@@ -25,6 +25,8 @@
 //! assert!((weight - Vec3::splat(0.5)).abs().max_element() < 1e-5);
 //! ```
 
+#![warn(missing_docs)]
+
 mod bsdf;
 mod conductor;
 mod dielectric;

@@ -134,9 +134,9 @@ impl Microfacet {
                     return 1.0;
                 }
                 // a = 1 / (α tan θ); Λ = (e^(−a²) / (a √π) − erfc(a)) / 2.
-                let a = f64::from(v.z.abs()) / f64::from(xy_alpha2).sqrt();
-                let lambda = 0.5 * ((-a * a).exp() / (a * std::f64::consts::PI.sqrt()) - erfc(a));
-                (1.0 / (1.0 + lambda)) as f32
+                let a = v.z.abs() / xy_alpha2.sqrt();
+                let lambda = 0.5 * ((-a * a).exp() / (a * PI.sqrt()) - erfc(a));
+                1.0 / (1.0 + lambda)
             }
         }
     }

@@ -4,13 +4,18 @@
 
 /// The error function erf(x) = 2/√π ∫₀ˣ e^(−t²) dt; ±1 at ±∞.
 pub(crate) fn erf(x: f32) -> f32 {
-    (1.0 - erfc(f64::from(x))) as f32
+    1.0 - erfc(x)
 }
 
 /// The complementary error function erfc(x) = 1 − erf(x), accurate also where it is tiny.
 ///
-/// The Chebyshev fit from Numerical Recipes (fractional error < 1.2·10⁻⁷ everywhere).
-pub(crate) fn erfc(x: f64) -> f64 {
+/// The Chebyshev fit from Numerical Recipes (fractional error < 1.2·10⁻⁷ everywhere), evaluated
+/// in `f32`, which adds about 10⁻⁶ relative rounding error.
+#[expect(
+    clippy::excessive_precision,
+    reason = "Numerical Recipes' published coefficients, kept verbatim"
+)]
+pub(crate) fn erfc(x: f32) -> f32 {
     let z = x.abs();
     let t = 1.0 / (1.0 + 0.5 * z);
     let poly = -1.265_512_23
@@ -92,7 +97,7 @@ mod tests {
             );
             assert!((f64::from(erf(-x)) + expected).abs() < 2e-7, "erf(-{x})");
         }
-        assert!((erfc(3.0) - 2.209_049_7e-5).abs() < 1e-7 * 2.2e-5);
+        assert!((erfc(3.0) - 2.209_049_7e-5).abs() < 2e-6 * 2.2e-5);
         assert_eq!(erf(f32::INFINITY), 1.0);
         assert_eq!(erf(f32::NEG_INFINITY), -1.0);
     }

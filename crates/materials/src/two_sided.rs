@@ -43,20 +43,26 @@ impl TwoSided {
     /// `inner.sample` for the mirrored `wo`, the sampled direction mirrored back to `wo`'s side.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
         let below = wo.z.is_sign_negative();
-        let (wo_upper, _) = to_upper_side(wo, Vec3::ZERO);
+        let wo_upper = if below { flip_z(wo) } else { wo };
         let mut sample = self.inner.sample(wo_upper, u_lobe, u_dir)?;
         if below {
-            sample.wi.z = -sample.wi.z;
+            sample.wi = flip_z(sample.wi);
         }
         Some(sample)
     }
 }
 
-/// Mitsuba's flip: `wi.z` takes the sign of `wo.z` multiplied in, and `wo.z` becomes |wo.z|.
+/// Mitsuba's flip: when `wo.z` is negative (sign bit set, as Mitsuba's `mulsign`), both
+/// directions are mirrored so that `wo` is on the upper side.
 fn to_upper_side(wo: Vec3, wi: Vec3) -> (Vec3, Vec3) {
     if wo.z.is_sign_negative() {
-        (Vec3::new(wo.x, wo.y, -wo.z), Vec3::new(wi.x, wi.y, -wi.z))
+        (flip_z(wo), flip_z(wi))
     } else {
         (wo, wi)
     }
+}
+
+/// Mirror image of `w` in the tangent plane.
+fn flip_z(w: Vec3) -> Vec3 {
+    Vec3::new(w.x, w.y, -w.z)
 }
