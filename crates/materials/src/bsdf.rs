@@ -1,0 +1,151 @@
+//! The closed set of BSDFs as one enum, and what sampling one returns.
+
+use crate::conductor::Conductor;
+use crate::dielectric::Dielectric;
+use crate::diffuse::Diffuse;
+use crate::rough_conductor::RoughConductor;
+use crate::two_sided::TwoSided;
+use glam::{Vec2, Vec3};
+
+/// A direction drawn by [`Bsdf::sample`], with what an estimator needs to weight it.
+///
+/// The estimator weight is always `f * wi.z.abs() / pdf_solid_angle`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// For a non-delta lobe: the BSDF value f(wo, wi) per steradian, RGB, without the cosine,
+    /// equal to [`Bsdf::eval`]. For a delta lobe: the lobe's reflectance or transmittance divided
+    /// by |cos θi| and multiplied by `pdf_solid_angle` (pbrt's convention), so the weight above
+    /// is the lobe's throughput divided by the probability of having chosen it.
+    pub f: Vec3,
+    /// The sampled direction, unit length, pointing away from the surface (local frame).
+    pub wi: Vec3,
+    /// For a non-delta lobe: density per steradian of `wi`, equal to [`Bsdf::pdf_solid_angle`].
+    /// For a delta lobe: the discrete probability of having chosen this lobe (in (0, 1]).
+    pub pdf_solid_angle: f32,
+    /// Whether `wi` came from a delta lobe (perfect mirror or refraction).
+    pub is_delta: bool,
+    /// The relative index of refraction crossed: η (inside over outside) when entering a
+    /// dielectric, 1/η when leaving it, 1 for reflection.
+    pub eta: f32,
+}
+
+/// Any of Strata's BSDFs, in the local shading frame (see the crate documentation).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Bsdf {
+    /// Lambertian reflection (Mitsuba's `diffuse`).
+    Diffuse(Diffuse),
+    /// Smooth metal, a perfect mirror (Mitsuba's `conductor`).
+    Conductor(Conductor),
+    /// Rough metal, a microfacet model (Mitsuba's `roughconductor`).
+    RoughConductor(RoughConductor),
+    /// Smooth glass-like interface (Mitsuba's `dielectric`).
+    Dielectric(Dielectric),
+    /// A reflecting BSDF seen the same from both sides (Mitsuba's `twosided`).
+    TwoSided(TwoSided),
+}
+
+impl Bsdf {
+    /// f(wo, wi) per steradian, RGB, without the cosine factor; 0 for delta lobes.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        match self {
+            Self::Diffuse(b) => b.eval(wo, wi),
+            Self::RoughConductor(b) => b.eval(wo, wi),
+            Self::TwoSided(b) => b.eval(wo, wi),
+            Self::Conductor(_) | Self::Dielectric(_) => Vec3::ZERO,
+        }
+    }
+
+    /// Density per steradian with which [`Self::sample`] produces `wi` from `wo`; 0 for delta
+    /// lobes (whose samples have no density).
+    pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match self {
+            Self::Diffuse(b) => b.pdf_solid_angle(wo, wi),
+            Self::RoughConductor(b) => b.pdf_solid_angle(wo, wi),
+            Self::TwoSided(b) => b.pdf_solid_angle(wo, wi),
+            Self::Conductor(_) | Self::Dielectric(_) => 0.0,
+        }
+    }
+
+    /// Importance-samples a direction `wi` for `wo`. `u_lobe` ∈ [0, 1) chooses among lobes (the
+    /// dielectric's reflection or refraction), `u_dir` ∈ [0, 1)² the direction within the lobe.
+    /// `None` when there is no valid direction (e.g. `wo` behind a one-sided BSDF, or a rough
+    /// reflection that lands below the surface), which the estimator counts as zero.
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        match self {
+            Self::Diffuse(b) => b.sample(wo, u_dir),
+            Self::Conductor(b) => b.sample(wo),
+            Self::RoughConductor(b) => b.sample(wo, u_dir),
+            Self::Dielectric(b) => b.sample(wo, u_lobe),
+            Self::TwoSided(b) => b.sample(wo, u_lobe, u_dir),
+        }
+    }
+
+    /// Whether every lobe is a delta (mirror, smooth dielectric): then `eval` and
+    /// `pdf_solid_angle` are always 0 and light sampling at this surface is pointless.
+    pub fn is_delta(&self) -> bool {
+        match self {
+            Self::Conductor(_) | Self::Dielectric(_) => true,
+            Self::Diffuse(_) | Self::RoughConductor(_) => false,
+            Self::TwoSided(b) => b.inner().is_delta(),
+        }
+    }
+
+    /// Whether at least one lobe is a delta, so some samples have `is_delta` set. Equal to
+    /// [`Self::is_delta`] for the current BSDFs, which have no mixed delta/non-delta lobes.
+    pub fn has_delta_lobe(&self) -> bool {
+        self.is_delta()
+    }
+
+    /// Whether light can pass to the other side of the surface (a dielectric).
+    pub fn has_transmission(&self) -> bool {
+        match self {
+            Self::Dielectric(_) => true,
+            Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
+            Self::TwoSided(b) => b.inner().has_transmission(),
+        }
+    }
+
+    /// A rough RGB albedo for heuristics (Russian roulette, choosing techniques), not for
+    /// shading: the diffuse reflectance; for conductors the reflectance at normal incidence
+    /// (`specular_reflectance` × Fresnel at cos θ = 1, ignoring microfacet shadowing); for a
+    /// dielectric F₀ · `specular_reflectance` + (1 − F₀) · `specular_transmittance`.
+    pub fn albedo_hint(&self) -> Vec3 {
+        match self {
+            Self::Diffuse(b) => b.reflectance(),
+            Self::Conductor(b) => b.reflectance(1.0),
+            Self::RoughConductor(b) => b.normal_reflectance(),
+            Self::Dielectric(b) => b.normal_albedo(),
+            Self::TwoSided(b) => b.inner().albedo_hint(),
+        }
+    }
+}
+
+impl From<Diffuse> for Bsdf {
+    fn from(b: Diffuse) -> Self {
+        Self::Diffuse(b)
+    }
+}
+
+impl From<Conductor> for Bsdf {
+    fn from(b: Conductor) -> Self {
+        Self::Conductor(b)
+    }
+}
+
+impl From<RoughConductor> for Bsdf {
+    fn from(b: RoughConductor) -> Self {
+        Self::RoughConductor(b)
+    }
+}
+
+impl From<Dielectric> for Bsdf {
+    fn from(b: Dielectric) -> Self {
+        Self::Dielectric(b)
+    }
+}
+
+impl From<TwoSided> for Bsdf {
+    fn from(b: TwoSided) -> Self {
+        Self::TwoSided(b)
+    }
+}

@@ -1,0 +1,42 @@
+//! Errors for BSDF parameters that cannot describe a material.
+
+use std::fmt;
+
+/// A BSDF parameter that is out of range; the scene loader reports it with the element's location.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialError {
+    /// An index of refraction that is not a finite positive number.
+    InvalidIor {
+        /// The parameter's Mitsuba name (`int_ior` or `ext_ior`).
+        name: &'static str,
+        /// The value given.
+        value: f32,
+    },
+    /// A roughness that is NaN or infinite (finite values are clamped like Mitsuba's).
+    InvalidRoughness {
+        /// The value given.
+        value: f32,
+    },
+    /// `twosided` around a BSDF that transmits light, which Mitsuba also rejects.
+    TransmissiveTwoSided,
+}
+
+impl fmt::Display for MaterialError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::InvalidIor { name, value } => write!(
+                f,
+                "`{name}` must be a finite positive index of refraction, got {value}"
+            ),
+            Self::InvalidRoughness { value } => {
+                write!(f, "`alpha` must be a finite number, got {value}")
+            }
+            Self::TransmissiveTwoSided => write!(
+                f,
+                "`twosided` can only wrap a reflecting BSDF (diffuse, conductor, roughconductor), not a dielectric"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for MaterialError {}

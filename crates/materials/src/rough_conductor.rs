@@ -1,0 +1,91 @@
+//! Mitsuba's `roughconductor`: a rough metal, the Cook–Torrance microfacet model with a
+//! conductor Fresnel term, sampled through the normals visible from `wo`.
+
+use crate::bsdf::BsdfSample;
+use crate::fresnel::{ComplexIor, fresnel_conductor, reflect_about};
+use crate::microfacet::Microfacet;
+use glam::{Vec2, Vec3};
+
+/// One-sided microfacet reflection f = F(wo·h) D(h) G1(wo, h) G1(wi, h) / (4 cos θo cos θi),
+/// h = normalize(wo + wi), times `specular_reflectance`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoughConductor {
+    distribution: Microfacet,
+    ior: ComplexIor,
+    specular_reflectance: Vec3,
+}
+
+impl RoughConductor {
+    /// A rough metal with microfacet `distribution`, complex index `ior`
+    /// ([`ComplexIor::PERFECT_MIRROR`] for `material="none"`) and RGB `specular_reflectance`.
+    pub fn new(distribution: Microfacet, ior: ComplexIor, specular_reflectance: Vec3) -> Self {
+        Self {
+            distribution,
+            ior,
+            specular_reflectance,
+        }
+    }
+
+    /// The microfacet distribution.
+    pub fn distribution(&self) -> Microfacet {
+        self.distribution
+    }
+
+    /// Reflectance at normal incidence, per RGB channel: F(1) · specular_reflectance.
+    pub fn normal_reflectance(&self) -> Vec3 {
+        self.specular_reflectance * fresnel_conductor(1.0, self.ior)
+    }
+
+    /// f(wo, wi) per steradian, zero unless both directions are above the surface.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let h = (wo + wi).normalize();
+        self.eval_with_normal(wo, wi, h)
+    }
+
+    /// Density per steradian of [`Self::sample`]: D_wo(h) / (4 wo·h) = D(h) G1(wo, h) / (4 cos θo),
+    /// with the exact Smith G1 (see the [`crate::microfacet`] module on Beckmann).
+    pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return 0.0;
+        }
+        let h = (wo + wi).normalize();
+        if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 {
+            return 0.0;
+        }
+        self.distribution.visible_normal_pdf(wo, h) / (4.0 * wo.dot(h))
+    }
+
+    /// Reflects `wo` about a visible microfacet normal sampled from `u_dir`. `None` when `wo` is
+    /// not above the surface or the reflected direction falls below it.
+    pub fn sample(&self, wo: Vec3, u_dir: Vec2) -> Option<BsdfSample> {
+        let (m, pdf_m) = self.distribution.sample_visible_normal(wo, u_dir)?;
+        let wi = reflect_about(wo, m);
+        let wo_dot_m = wo.dot(m);
+        if wi.z <= 0.0 || wo_dot_m <= 0.0 {
+            return None;
+        }
+        let pdf = pdf_m / (4.0 * wo_dot_m);
+        let f = self.eval_with_normal(wo, wi, m);
+        (pdf.is_finite() && pdf > 0.0).then_some(BsdfSample {
+            f,
+            wi,
+            pdf_solid_angle: pdf,
+            is_delta: false,
+            eta: 1.0,
+        })
+    }
+
+    /// The model's value for directions above the surface and their half vector `h`.
+    fn eval_with_normal(&self, wo: Vec3, wi: Vec3, h: Vec3) -> Vec3 {
+        let d = self.distribution.d(h);
+        if d == 0.0 {
+            return Vec3::ZERO;
+        }
+        let g = self.distribution.g(wo, wi, h);
+        let fresnel = fresnel_conductor(wo.dot(h), self.ior);
+        self.specular_reflectance * fresnel * (d * g / (4.0 * wo.z * wi.z))
+    }
+}

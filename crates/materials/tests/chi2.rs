@@ -1,0 +1,200 @@
+//! Chi-square goodness of fit of every non-delta `Bsdf::sample` against its `pdf_solid_angle`,
+//! with a fixed seed per case (printed on failure). The family-wise significance level is 0.01
+//! over all [`CASES`] cases of this file, Šidák-corrected to a per-case level as in Mitsuba's
+//! `chi2.py`, so a correct sampler fails somewhere with probability 0.01.
+//!
+//! The sphere is binned about the +y axis (directions are rotated so that +y becomes the bins'
+//! pole): lobes centred in the xz-plane of incidence then sit on the bins' equator, where the
+//! bins are narrow in both angles, and the horizon z = 0 falls on bin edges (φ = 0 and π).
+
+#[path = "support/chi2.rs"]
+mod chi2;
+#[path = "support/fixtures.rs"]
+mod fixtures;
+
+use chi2::{Chi2Config, Chi2Domain, Chi2Outcome, chi2_test};
+use fixtures::{ALPHAS, INCIDENCE_DEGREES, gold, incidence, rough_conductor};
+use glam::{Vec2, Vec3};
+use materials::{Bsdf, ComplexIor, Diffuse, MicrofacetKind, TwoSided};
+use sampling::Rng;
+
+/// Number of (BSDF, wo) cases tested for goodness of fit in this file.
+const CASES: u32 = 25;
+
+/// Family-wise significance level over all cases.
+const FAMILY_SIGNIFICANCE: f64 = 0.01;
+
+/// Per-case significance level: Šidák's 1 − (1 − α)^(1/cases).
+fn case_significance() -> f64 {
+    1.0 - (1.0 - FAMILY_SIGNIFICANCE).powf(1.0 / f64::from(CASES))
+}
+
+/// Rotation taking the local +y axis to the binning pole +z: (x, y, z) ↦ (x, −z, y).
+fn to_binning_frame(w: Vec3) -> Vec3 {
+    Vec3::new(w.x, -w.z, w.y)
+}
+
+/// Inverse of [`to_binning_frame`].
+fn from_binning_frame(v: Vec3) -> Vec3 {
+    Vec3::new(v.x, v.z, -v.y)
+}
+
+/// Runs the chi-square test of `bsdf` at `wo`; returns the outcome for the caller to judge.
+fn run(bsdf: &Bsdf, wo: Vec3, seed: u32, sample_count: usize) -> Chi2Outcome {
+    let config = Chi2Config {
+        seed,
+        sample_count,
+        significance: case_significance(),
+        ..Chi2Config::default()
+    };
+    chi2_test(
+        Chi2Domain::Sphere,
+        |rng: &mut Rng| {
+            let u_lobe = rng.next_f32();
+            let u_dir = Vec2::new(rng.next_f32(), rng.next_f32());
+            bsdf.sample(wo, u_lobe, u_dir)
+                .map(|s| to_binning_frame(s.wi))
+        },
+        |v| bsdf.pdf_solid_angle(wo, from_binning_frame(v)),
+        &config,
+    )
+}
+
+/// Asserts that `bsdf` sampled at `wo` matches its pdf, and that the fraction of successful
+/// samples matches the pdf's integral (within 5 standard deviations plus quadrature error).
+fn assert_fits(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u32) {
+    let n = 1_000_000;
+    let outcome = run(bsdf, wo, seed, n);
+    if let Some(failure) = &outcome.failure {
+        panic!("{name}, wo {wo}: {failure}");
+    }
+    let p = outcome.pdf_integral.min(1.0);
+    let sigma = (p * (1.0 - p) / n as f64).sqrt();
+    assert!(
+        (outcome.valid_fraction - outcome.pdf_integral).abs() < 5.0 * sigma + 2e-3,
+        "{name}, wo {wo}, seed {seed}: {} of samples valid but the pdf integrates to {}",
+        outcome.valid_fraction,
+        outcome.pdf_integral
+    );
+}
+
+fn check_rough_conductor(kind: MicrofacetKind, alpha: f32, seed_base: u32) {
+    // The pdf does not depend on the Fresnel term; a coloured one exercises the full sample path.
+    let bsdf = rough_conductor(kind, alpha, gold());
+    for (i, degrees) in INCIDENCE_DEGREES.iter().enumerate() {
+        let name = format!("{kind:?} alpha {alpha} at {degrees} degrees");
+        assert_fits(&name, &bsdf, incidence(*degrees), seed_base + i as u32);
+    }
+}
+
+#[test]
+fn diffuse_sampling_matches_pdf() {
+    let bsdf = Bsdf::from(Diffuse::new(Vec3::splat(0.7)));
+    for (i, degrees) in INCIDENCE_DEGREES.iter().enumerate() {
+        assert_fits(
+            &format!("diffuse at {degrees} degrees"),
+            &bsdf,
+            incidence(*degrees),
+            10 + i as u32,
+        );
+    }
+}
+
+#[test]
+fn two_sided_diffuse_from_below_matches_pdf() {
+    let inner = Bsdf::from(Diffuse::new(Vec3::splat(0.7)));
+    let bsdf = Bsdf::from(TwoSided::new(inner).expect("diffuse is reflective"));
+    for (i, degrees) in INCIDENCE_DEGREES.iter().enumerate() {
+        let above = incidence(*degrees);
+        let below = Vec3::new(above.x, above.y, -above.z);
+        assert_fits(
+            &format!("twosided diffuse at {degrees} degrees below"),
+            &bsdf,
+            below,
+            20 + i as u32,
+        );
+    }
+}
+
+#[test]
+fn two_sided_rough_conductor_from_below_matches_pdf() {
+    let inner = rough_conductor(MicrofacetKind::Ggx, 0.3, ComplexIor::PERFECT_MIRROR);
+    let bsdf = Bsdf::from(TwoSided::new(inner).expect("conductor is reflective"));
+    let below = Vec3::new(incidence(45.0).x, 0.0, -incidence(45.0).z);
+    assert_fits("twosided GGX 0.3 at 45 degrees below", &bsdf, below, 30);
+}
+
+#[test]
+fn ggx_alpha_005_sampling_matches_pdf() {
+    check_rough_conductor(MicrofacetKind::Ggx, ALPHAS[0], 100);
+}
+
+#[test]
+fn ggx_alpha_03_sampling_matches_pdf() {
+    check_rough_conductor(MicrofacetKind::Ggx, ALPHAS[1], 110);
+}
+
+#[test]
+fn ggx_alpha_08_sampling_matches_pdf() {
+    check_rough_conductor(MicrofacetKind::Ggx, ALPHAS[2], 120);
+}
+
+#[test]
+fn beckmann_alpha_005_sampling_matches_pdf() {
+    check_rough_conductor(MicrofacetKind::Beckmann, ALPHAS[0], 200);
+}
+
+#[test]
+fn beckmann_alpha_03_sampling_matches_pdf() {
+    check_rough_conductor(MicrofacetKind::Beckmann, ALPHAS[1], 210);
+}
+
+#[test]
+fn beckmann_alpha_08_sampling_matches_pdf() {
+    check_rough_conductor(MicrofacetKind::Beckmann, ALPHAS[2], 220);
+}
+
+/// The harness must reject samplers that do not match their pdf, or the tests above prove nothing.
+#[test]
+fn harness_rejects_mismatched_pdfs() {
+    let wo = incidence(45.0);
+    let sampled = rough_conductor(MicrofacetKind::Ggx, 0.3, ComplexIor::PERFECT_MIRROR);
+    let claimed = rough_conductor(MicrofacetKind::Ggx, 0.32, ComplexIor::PERFECT_MIRROR);
+    let config = Chi2Config {
+        seed: 7,
+        significance: case_significance(),
+        ..Chi2Config::default()
+    };
+    let outcome = chi2_test(
+        Chi2Domain::Sphere,
+        |rng: &mut Rng| {
+            let u = Vec2::new(rng.next_f32(), rng.next_f32());
+            sampled.sample(wo, 0.5, u).map(|s| to_binning_frame(s.wi))
+        },
+        |v| claimed.pdf_solid_angle(wo, from_binning_frame(v)),
+        &config,
+    );
+    assert!(
+        outcome.failure.is_some() && outcome.p_value < config.significance,
+        "alpha 0.30 vs 0.32 not detected: {outcome:?}"
+    );
+    assert!(outcome.statistic > outcome.dof as f64, "{outcome:?}");
+
+    // Samples where the claimed pdf is zero must fail outright.
+    let diffuse = Bsdf::from(Diffuse::new(Vec3::ONE));
+    let outcome = chi2_test(
+        Chi2Domain::Sphere,
+        |rng: &mut Rng| {
+            let u = Vec2::new(rng.next_f32(), rng.next_f32());
+            diffuse
+                .sample(wo, 0.5, u)
+                .map(|s| Vec3::new(s.wi.x, s.wi.y, -s.wi.z))
+        },
+        |v| diffuse.pdf_solid_angle(wo, v),
+        &config,
+    );
+    assert!(
+        outcome.failure.is_some(),
+        "samples below the horizon not detected"
+    );
+}
