@@ -39,8 +39,9 @@ use outcome::{Tally, Verdict, conclude};
 use quadrature::{Depth, Rect, integrate};
 use std::f64::consts::{PI, TAU};
 
-/// Refinement of a bin's cubature: always into 4² cells, and into at most 4⁷ along discontinuities.
-const QUADRATURE_DEPTH: Depth = Depth { min: 2, max: 7 };
+/// Refinement of a bin's cubature: always into 4² cells, and into cells 2¹⁰ times smaller than the bin
+/// along discontinuities (a jump costs about 2¹¹ cells per bin it crosses).
+const QUADRATURE_DEPTH: Depth = Depth { min: 2, max: 10 };
 /// Cubature error allowed per bin, as a fraction of the standard deviation of the bin's count.
 const QUADRATURE_ERROR_PER_SIGMA: f64 = 0.05;
 /// How far from unit length a direction may be and still count as on the sphere.

@@ -27,10 +27,23 @@ const STEP_2D: [u32; 2] = [0xC13F_A9A9, 0x91E1_0DA5];
 /// as stratification for smooth integrands at *any* sample count, are extensible (sample indices past
 /// N continue the same sequence), and cost a few integer operations per dimension with no stored points.
 ///
-/// Each dimension looks the tile up at its own random toroidal offset and orientation (keyed by
-/// (seed, dimension)), so dimensions are decorrelated; the permutation of indices is the same for all
-/// pixels, so every pixel's point set is the same set under a different shift, as dithering requires.
-/// Over random seeds every value is uniform on [0, 1) (the shift is uniform), so estimates are unbiased.
+/// Each dimension (and each axis of a 2D dimension) looks the tile up at its own random toroidal offset
+/// and orientation (one of the square's 8 symmetries), keyed by (seed, dimension), and adds a per-pixel
+/// hash below the tile's 12 bits of rank; the permutation of indices is keyed by (seed, dimension, block)
+/// and is the same for all pixels, so every pixel's point set is the same set under a different shift,
+/// as dithering requires. Over random seeds the shifts of different dimensions are independent and
+/// uniform, so every dimension, and every pair of dimensions, is uniform on [0, 1): estimates are
+/// unbiased.
+///
+/// Measured (tests/blue_noise.rs, 64 × 64 pixels, a smooth 2D integrand): the share of the error's
+/// power below a quarter of the Nyquist frequency is 4.9× smaller than with independent samples at
+/// 1 sample per pixel, 1.9× at 4 and 2.2× at 16, with an error variance close to the stratified
+/// sampler's.
+///
+/// Limitations: the 64-pixel tile repeats, so pixels 64 apart get the same shifts (their errors are
+/// correlated within one image). Two dimensions that happen to draw nearly the same placement (about
+/// 1 in 1300 pairs of dimensions per seed) give strongly correlated values within that image: more
+/// error in that render, never bias.
 #[derive(Clone)]
 pub struct BlueNoiseSampler {
     seed: u32,
