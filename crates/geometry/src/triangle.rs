@@ -5,6 +5,12 @@
 //! three edge functions are 2D cross products of transformed vertices. A shared edge is evaluated
 //! from the same transformed vertices by both of its triangles, with opposite signs, so a ray can
 //! never pass between them; exact zeros are re-evaluated in double precision.
+//!
+//! A hit must also lie conservatively in front of the origin: its `t` has to exceed a bound on
+//! the rounding error of `t` (the bound of pbrt-v4, section 6.8.4), which grows with the distance
+//! of the vertices from the origin. Without it, a ray leaving a large triangle whose own hit point
+//! has small coordinates (a 1000-unit floor through the origin) can re-hit it at a `t` that is
+//! pure rounding noise.
 
 use glam::{Mat3A, Vec3, Vec3A};
 
@@ -80,11 +86,33 @@ impl RayShear {
         }
         let inv_det = 1.0 / det;
         let t = t_scaled * inv_det;
-        (t > 0.0 && t < t_max).then(|| TriangleHit {
+        if !(t > t_error_bound(a, b, c, Vec3A::new(u, v_, w), inv_det) && t < t_max) {
+            return None;
+        }
+        Some(TriangleHit {
             t,
             bary: Vec3::new(u, v_, w) * inv_det,
         })
     }
+}
+
+/// `n u / (1 - n u)` with `u = 2^-24`: the relative error bound of `n` rounded operations.
+const fn gamma(n: f32) -> f32 {
+    let u = f32::EPSILON * 0.5;
+    n * u / (1.0 - n * u)
+}
+
+/// Bound on the absolute rounding error of `t` computed from the sheared vertices `a`, `b`, `c`,
+/// the edge functions `edges` and `1 / det`.
+#[inline(always)]
+fn t_error_bound(a: Vec3A, b: Vec3A, c: Vec3A, edges: Vec3A, inv_det: f32) -> f32 {
+    let max = a.abs().max(b.abs()).max(c.abs());
+    let delta_z = gamma(3.0) * max.z;
+    let delta_x = gamma(5.0) * (max.x + max.z);
+    let delta_y = gamma(5.0) * (max.y + max.z);
+    let delta_e = 2.0 * (gamma(2.0) * max.x * max.y + delta_y * max.x + delta_x * max.y);
+    let max_e = edges.abs().max_element();
+    3.0 * (gamma(3.0) * max_e * max.z + delta_e * max.z + delta_z * max_e) * inv_det.abs()
 }
 
 #[cfg(test)]
@@ -121,6 +149,35 @@ mod tests {
         assert!(behind.intersect(&tri(), f32::INFINITY).is_none());
         let short = RayShear::new(Vec3A::new(0.25, 0.25, 0.0), Vec3A::NEG_Z);
         assert!(short.intersect(&tri(), 2.0).is_none());
+    }
+
+    #[test]
+    fn rounding_noise_behind_the_origin_is_not_a_hit() {
+        // A ray leaving a 2000-unit floor upwards, from 2^-16 above it at a point with small
+        // coordinates: t comes out at about +6e-5 though the floor lies behind the origin.
+        let floor = [
+            Vec3A::new(-1000.0, -1000.0, 0.0),
+            Vec3A::new(1000.0, 1000.0, 0.0),
+            Vec3A::new(-1000.0, 1000.0, 0.0),
+        ];
+        let origin = Vec3A::new(-381.40607, 200.33887, 1.0 / 65536.0);
+        let dir = Vec3A::new(0.734063, -0.3494725, 0.58225465);
+        assert!(
+            RayShear::new(origin, dir)
+                .intersect(&floor, f32::INFINITY)
+                .is_none()
+        );
+        // Turned downwards it hits once t clears the error bound, which is about 1e-2 here
+        // (1e-5 of the vertices' distance from the origin; pbrt's bound is conservative).
+        let down = dir * Vec3A::new(1.0, 1.0, -1.0);
+        for (height, hits) in [(1e-1, true), (3e-2, true), (1e-3, false)] {
+            let from = Vec3A::new(origin.x, origin.y, height);
+            let hit = RayShear::new(from, down).intersect(&floor, f32::INFINITY);
+            assert_eq!(hit.is_some(), hits, "height {height}: {hit:?}");
+            if let Some(hit) = hit {
+                assert!((hit.t - height / 0.58225465).abs() < 1e-3, "t = {}", hit.t);
+            }
+        }
     }
 
     #[test]

@@ -68,7 +68,7 @@ impl Accel {
 
     /// The closest surface along `ray` with `0 < t < t_max`, if any.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        if self.geoms.is_empty() || !(t_max > 0.0) {
+        if self.geoms.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return None;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
@@ -82,7 +82,7 @@ impl Accel {
 
     /// True when some surface lies along `ray` with `0 < t < t_max`.
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        if self.geoms.is_empty() || !(t_max > 0.0) {
+        if self.geoms.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return false;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());

@@ -44,12 +44,16 @@ impl Pcg32 {
 
     /// Uniform integer in `0..n`.
     pub fn below(&mut self, n: usize) -> usize {
-        (self.next_u32() as u64 * n as u64 >> 32) as usize
+        ((self.next_u32() as u64 * n as u64) >> 32) as usize
     }
 
     /// Uniform point in the cube `[-1, 1)^3`.
     pub fn in_cube(&mut self) -> Vec3 {
-        Vec3::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0))
+        Vec3::new(
+            self.range(-1.0, 1.0),
+            self.range(-1.0, 1.0),
+            self.range(-1.0, 1.0),
+        )
     }
 
     /// Uniform unit vector.
@@ -69,7 +73,11 @@ impl Pcg32 {
     /// Uniform barycentric coordinates.
     pub fn barycentric(&mut self) -> Vec3 {
         let (a, b) = (self.f32(), self.f32());
-        let (a, b) = if a + b > 1.0 { (1.0 - a, 1.0 - b) } else { (a, b) };
+        let (a, b) = if a + b > 1.0 {
+            (1.0 - a, 1.0 - b)
+        } else {
+            (a, b)
+        };
         Vec3::new(1.0 - a - b, a, b)
     }
 }
@@ -82,10 +90,12 @@ fn indexed(triangles: impl IntoIterator<Item = [Vec3; 3]>) -> TriangleMesh {
         .into_iter()
         .map(|tri| {
             tri.map(|p| {
-                *lookup.entry(p.to_array().map(f32::to_bits)).or_insert_with(|| {
-                    positions.push(p);
-                    positions.len() as u32 - 1
-                })
+                *lookup
+                    .entry(p.to_array().map(f32::to_bits))
+                    .or_insert_with(|| {
+                        positions.push(p);
+                        positions.len() as u32 - 1
+                    })
             })
         })
         .collect();
@@ -109,7 +119,12 @@ pub fn subdivided_cube(n: u32) -> TriangleMesh {
             };
             for i in 0..n {
                 for j in 0..n {
-                    let (a, b, c, d) = (point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1));
+                    let (a, b, c, d) = (
+                        point(i, j),
+                        point(i + 1, j),
+                        point(i + 1, j + 1),
+                        point(i, j + 1),
+                    );
                     if sign > 0.0 {
                         tris.push([a, b, c]);
                         tris.push([a, c, d]);
@@ -130,18 +145,43 @@ pub fn subdivided_cube(n: u32) -> TriangleMesh {
 pub fn icosphere(subdivisions: u32) -> TriangleMesh {
     let t = (1.0 + 5f32.sqrt()) / 2.0;
     let mut positions: Vec<Vec3> = [
-        (-1.0, t, 0.0), (1.0, t, 0.0), (-1.0, -t, 0.0), (1.0, -t, 0.0),
-        (0.0, -1.0, t), (0.0, 1.0, t), (0.0, -1.0, -t), (0.0, 1.0, -t),
-        (t, 0.0, -1.0), (t, 0.0, 1.0), (-t, 0.0, -1.0), (-t, 0.0, 1.0),
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
     ]
     .iter()
     .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
     .collect();
     let mut indices: Vec<[u32; 3]> = vec![
-        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
-        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
-        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
     ];
     for _ in 0..subdivisions {
         let mut midpoints = HashMap::new();
@@ -163,7 +203,8 @@ pub fn icosphere(subdivisions: u32) -> TriangleMesh {
     }
     let uvs = positions.iter().map(|p| Vec2::new(p.x, p.y)).collect();
     let normals = positions.clone();
-    TriangleMesh::new(positions, Some(normals), Some(uvs), indices).expect("generated meshes are valid")
+    TriangleMesh::new(positions, Some(normals), Some(uvs), indices)
+        .expect("generated meshes are valid")
 }
 
 /// `mesh` scaled by `scale` about the origin, then translated by `offset` (normals unchanged).
@@ -182,6 +223,8 @@ pub fn triangle_soup(rng: &mut Pcg32, count: usize, size: f32) -> TriangleMesh {
             [c, c + size * rng.in_cube(), c + size * rng.in_cube()]
         })
         .collect();
-    let indices = (0..count as u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+    let indices = (0..count as u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+        .collect();
     TriangleMesh::new(positions, None, None, indices).expect("generated meshes are valid")
 }
