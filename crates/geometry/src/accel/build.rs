@@ -1,0 +1,127 @@
+//! Gathering the primitives of all shapes and building the CWBVH over them.
+
+use std::time::Duration;
+
+use glam::{Vec3, Vec3A};
+use obvhs::BvhBuildParams;
+use obvhs::aabb::Aabb as BvhAabb;
+use obvhs::cwbvh::CwBvh;
+use obvhs::cwbvh::builder::build_cwbvh;
+
+use super::prim::{PrimGeom, PrimInfo, direction_of};
+use crate::sphere::SphereGeom;
+use crate::{Aabb, Shape};
+
+/// The built hierarchy and its primitives in BVH order.
+pub(crate) struct Built {
+    pub bvh: CwBvh,
+    pub geoms: Vec<PrimGeom>,
+    pub infos: Vec<PrimInfo>,
+    pub bounds: Aabb,
+}
+
+/// Builds the hierarchy over every usable primitive of `shapes`.
+///
+/// # Panics
+/// If a mesh fails `TriangleMesh::validate`.
+pub(crate) fn build(shapes: &[Shape]) -> Built {
+    let mut geoms = Vec::new();
+    let mut infos = Vec::new();
+    let mut boxes = Vec::new();
+    for (shape_index, shape) in shapes.iter().enumerate() {
+        let shape_index = u32::try_from(shape_index).expect("fewer than 2^32 shapes");
+        match shape {
+            Shape::Mesh(mesh) => {
+                if let Err(err) = mesh.validate() {
+                    panic!("shape {shape_index}: {err}");
+                }
+                for prim in 0..mesh.triangle_count() {
+                    let [p0, p1, p2] = mesh.triangle(prim);
+                    if !(p0.is_finite() && p1.is_finite() && p2.is_finite()) {
+                        continue;
+                    }
+                    // Zero-area triangles have no normal; no ray should hit them.
+                    let Some(ng) = direction_of((p1 - p0).cross(p2 - p0)) else {
+                        continue;
+                    };
+                    let v = [p0, p1, p2].map(Vec3A::from);
+                    geoms.push(PrimGeom::Triangle(v));
+                    infos.push(PrimInfo {
+                        shape: shape_index,
+                        prim: u32::try_from(prim).expect("fewer than 2^32 triangles per mesh"),
+                        ng,
+                    });
+                    boxes.push(BvhAabb::new(
+                        v[0].min(v[1]).min(v[2]),
+                        v[0].max(v[1]).max(v[2]),
+                    ));
+                }
+            }
+            Shape::Sphere(sphere) => {
+                let b = sphere.bounds();
+                if !(sphere.radius > 0.0 && b.min.is_finite() && b.max.is_finite()) {
+                    continue;
+                }
+                geoms.push(PrimGeom::Sphere(SphereGeom {
+                    center: sphere.center.into(),
+                    radius: sphere.radius,
+                }));
+                infos.push(PrimInfo {
+                    shape: shape_index,
+                    prim: 0,
+                    ng: Vec3::ZERO,
+                });
+                boxes.push(BvhAabb::new(b.min.into(), b.max.into()));
+            }
+        }
+    }
+
+    let bounds = boxes.iter().fold(Aabb::EMPTY, |acc, b| {
+        acc.union(Aabb::new(b.min.into(), b.max.into()))
+    });
+    let bvh = if boxes.is_empty() {
+        CwBvh::default()
+    } else {
+        let padded: Vec<BvhAabb> = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| tie_breaking_pad(i, b))
+            .collect();
+        build_cwbvh(
+            &padded,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        )
+    };
+    Built {
+        geoms: bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| geoms[i as usize])
+            .collect(),
+        infos: bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| infos[i as usize])
+            .collect(),
+        bvh,
+        bounds,
+    }
+}
+
+/// Box `b` of primitive `i`, grown by a pseudo-random fraction of `1e-4` of its size (plus a few
+/// ulps of its position).
+///
+/// obvhs' PLOC builder pairs each node with the last of equally good neighbours, so identical
+/// boxes (duplicate primitives) and evenly spaced equal boxes (a row of equal spheres) merge one
+/// pair per pass: quadratic build time and, for duplicates, a chain-shaped tree thousands of levels
+/// deep. Distinct sizes break the ties. Growing a box never loses a hit.
+fn tie_breaking_pad(i: usize, b: &BvhAabb) -> BvhAabb {
+    let hash = (i as u32 ^ 0x5bd1_e995).wrapping_mul(0x9e37_79b9);
+    let hash = (hash ^ (hash >> 15)).wrapping_mul(0x85eb_ca6b);
+    let fraction = (hash >> 8) as f32 / (1u32 << 24) as f32;
+    let size = (b.max - b.min).max_element();
+    let magnitude = b.min.abs().max(b.max.abs()).max_element();
+    let pad = fraction * (1e-4 * size + 4.0 * f32::EPSILON * magnitude);
+    BvhAabb::new(b.min - pad, b.max + pad)
+}

@@ -1,0 +1,206 @@
+//! The scene's bounding volume hierarchy over all shapes.
+
+mod build;
+mod node;
+mod prim;
+mod query;
+mod walk;
+
+use glam::{UVec2, Vec2, Vec3};
+use obvhs::cwbvh::CwBvh;
+use obvhs::faststack::{FastStack, HeapStack, StackStack};
+
+use crate::{Aabb, Hit, Ray, Shape, Sphere};
+use node::hit_children;
+use prim::{PrimGeom, PrimHit, PrimInfo, direction_of};
+use query::RayQuery;
+use walk::{FIXED_STACK, Walk};
+
+/// A compressed wide BVH (obvhs' CWBVH, built by PLOC) over every triangle and sphere of a
+/// scene, owning the shapes. Queries do not allocate (except on pathologically deep trees, see
+/// below) and may run from many threads at once.
+///
+/// Triangles with no area or a non-finite vertex, and spheres with a non-positive or non-finite
+/// radius or centre, are left out: rays never hit them.
+pub struct Accel {
+    shapes: Vec<Shape>,
+    bvh: CwBvh,
+    /// Primitive geometry in BVH order: a leaf's `primitive_id` indexes it directly.
+    geoms: Vec<PrimGeom>,
+    /// Ids and normals of the primitives, in the same order as `geoms`.
+    infos: Vec<PrimInfo>,
+    bounds: Aabb,
+    /// True when the tree is too deep for the fixed traversal stack (thousands of exactly
+    /// coincident primitives); queries then allocate a stack sized to `depth`.
+    deep: bool,
+    depth: usize,
+}
+
+impl Accel {
+    /// Builds the hierarchy over `shapes` (any number, including none).
+    ///
+    /// # Panics
+    /// If a mesh fails [`crate::TriangleMesh::validate`]; the scene loader checks meshes when it
+    /// creates them.
+    pub fn new(shapes: Vec<Shape>) -> Accel {
+        let built = build::build(&shapes);
+        let depth = walk::depth(&built.bvh);
+        Accel {
+            shapes,
+            bvh: built.bvh,
+            geoms: built.geoms,
+            infos: built.infos,
+            bounds: built.bounds,
+            deep: depth + 1 >= FIXED_STACK,
+            depth,
+        }
+    }
+
+    /// The shapes, in the order given to [`Accel::new`] ([`Hit::shape`] indexes this).
+    pub fn shapes(&self) -> &[Shape] {
+        &self.shapes
+    }
+
+    /// World-space bounds of everything a ray can hit ([`Aabb::EMPTY`] for an empty scene).
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// The closest surface along `ray` with `0 < t < t_max`, if any.
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        if self.geoms.is_empty() || t_max.is_nan() || t_max <= 0.0 {
+            return None;
+        }
+        let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        let found = if self.deep {
+            self.closest(self.deep_walk(&query), &query, t_max)
+        } else {
+            self.closest(fixed_walk(&query), &query, t_max)
+        };
+        found.map(|(id, hit)| self.surface_hit(ray, id, hit))
+    }
+
+    /// True when some surface lies along `ray` with `0 < t < t_max`.
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        if self.geoms.is_empty() || t_max.is_nan() || t_max <= 0.0 {
+            return false;
+        }
+        let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        if self.deep {
+            self.any(self.deep_walk(&query), &query, t_max)
+        } else {
+            self.any(fixed_walk(&query), &query, t_max)
+        }
+    }
+
+    fn deep_walk(&self, query: &RayQuery) -> Walk<HeapStack<UVec2>> {
+        Walk::new(HeapStack::new_with_capacity(self.depth + 1), query.neg)
+    }
+
+    /// The closest primitive hit with `0 < t < t_max`: its index in `geoms` and the hit.
+    #[inline(always)]
+    fn closest<S: FastStack<UVec2>>(
+        &self,
+        mut walk: Walk<S>,
+        query: &RayQuery,
+        t_max: f32,
+    ) -> Option<(usize, PrimHit)> {
+        let mut closest = t_max;
+        let mut found = None;
+        let mut node;
+        obvhs::traverse!(
+            self.bvh,
+            node,
+            walk,
+            hit_children(node, query, closest, walk.oct_inv4),
+            {
+                let id = walk.primitive_id as usize;
+                if let Some(hit) = self.geoms[id].intersect(query, closest) {
+                    closest = hit.t();
+                    found = Some((id, hit));
+                }
+            }
+        );
+        found
+    }
+
+    /// Whether any primitive is hit with `0 < t < t_max`.
+    #[inline(always)]
+    fn any<S: FastStack<UVec2>>(&self, mut walk: Walk<S>, query: &RayQuery, t_max: f32) -> bool {
+        let mut node;
+        'search: {
+            obvhs::traverse!(
+                self.bvh,
+                node,
+                walk,
+                hit_children(node, query, t_max, walk.oct_inv4),
+                {
+                    if self.geoms[walk.primitive_id as usize]
+                        .intersect(query, t_max)
+                        .is_some()
+                    {
+                        break 'search true;
+                    }
+                }
+            );
+            false
+        }
+    }
+
+    /// Completes the hit of `ray` with primitive `id` (index into `geoms`).
+    fn surface_hit(&self, ray: &Ray, id: usize, hit: PrimHit) -> Hit {
+        let info = self.infos[id];
+        match (&self.shapes[info.shape as usize], &self.geoms[id], hit) {
+            (Shape::Mesh(mesh), PrimGeom::Triangle(v), PrimHit::Triangle(tri)) => {
+                let b = tri.bary;
+                let p = Vec3::from(v[0] * b.x + v[1] * b.y + v[2] * b.z);
+                let [i0, i1, i2] = mesh.indices[info.prim as usize].map(|i| i as usize);
+                let ns = mesh
+                    .normals
+                    .as_ref()
+                    .and_then(|n| direction_of(n[i0] * b.x + n[i1] * b.y + n[i2] * b.z))
+                    .map_or(info.ng, |ns| if ns.dot(info.ng) < 0.0 { -ns } else { ns });
+                let uv = mesh.uvs.as_ref().map_or(Vec2::new(b.y, b.z), |uv| {
+                    uv[i0] * b.x + uv[i1] * b.y + uv[i2] * b.z
+                });
+                Hit {
+                    t: tri.t,
+                    p,
+                    ng: info.ng,
+                    ns,
+                    uv,
+                    shape: info.shape,
+                    prim: info.prim,
+                }
+            }
+            (Shape::Sphere(sphere), PrimGeom::Sphere(geom), PrimHit::Sphere(t)) => {
+                // The computed point only lands on the centre when the radius is below the float
+                // spacing at that position; the normal then faces the ray.
+                let outward = direction_of(ray.at(t) - sphere.center).unwrap_or(-ray.dir);
+                let p = Vec3::from(geom.center) + geom.radius * outward;
+                let ng = if sphere.flip_normals {
+                    -outward
+                } else {
+                    outward
+                };
+                Hit {
+                    t,
+                    p,
+                    ng,
+                    ns: ng,
+                    uv: Sphere::uv(outward),
+                    shape: info.shape,
+                    prim: 0,
+                }
+            }
+            _ => unreachable!("primitive {id} disagrees with its shape"),
+        }
+    }
+}
+
+fn fixed_walk(query: &RayQuery) -> Walk<StackStack<UVec2, FIXED_STACK>> {
+    Walk::new(StackStack::default(), query.neg)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,26 @@
+//! The record of a ray hitting a surface.
+
+use glam::{Vec2, Vec3};
+
+/// Where a ray hit a surface, as returned by [`crate::Accel::intersect`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Distance along the (unit) ray direction, in world units.
+    pub t: f32,
+    /// Hit point in world space, on the surface (re-projected, not `origin + t * dir`).
+    pub p: Vec3,
+    /// Unit geometric normal as the shape defines it: for a mesh triangle `(p1 - p0) x (p2 - p0)`,
+    /// for a sphere outward (inward with `flip_normals`). Never flipped towards the ray.
+    pub ng: Vec3,
+    /// Unit shading normal: the interpolated vertex normals when the mesh has them, else `ng`.
+    /// Always in the same hemisphere as `ng`.
+    pub ns: Vec3,
+    /// Surface coordinates: the mesh's interpolated texture coordinates, or the barycentric
+    /// coordinates `(b1, b2)` of `p1` and `p2` when it has none; for a sphere `(phi / 2pi, theta / pi)`
+    /// with `phi` measured from +x towards +y and `theta` from +z.
+    pub uv: Vec2,
+    /// Index of the shape in the list given to [`crate::Accel::new`].
+    pub shape: u32,
+    /// Index of the triangle within its mesh (always 0 for a sphere).
+    pub prim: u32,
+}

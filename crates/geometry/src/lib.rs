@@ -1,0 +1,52 @@
+//! Rays, bounding boxes, triangle meshes, spheres and the scene's bounding volume hierarchy.
+//!
+//! All geometry is in world space and in `f32`. [`Accel`] builds one compressed wide BVH
+//! (obvhs' CWBVH) over every triangle and sphere of a scene and answers closest-hit
+//! ([`Accel::intersect`]) and any-hit ([`Accel::occluded`]) queries without allocating.
+//!
+//! Robustness, in brief:
+//! - triangles are intersected with the watertight test of Woop, Benthin and Wald (2013), so a ray
+//!   through a shared edge or vertex of a closed mesh always hits one of its triangles;
+//! - spheres use the numerically careful quadratic of Ray Tracing Gems ch. 7, so small spheres far
+//!   from the ray origin keep their precision;
+//! - BVH boxes are tested with a conservative error margin and a lower bound of `t = 0` (obvhs' own
+//!   box test uses a fixed lower bound of `1e-4`, which misses nearby surfaces of small scenes);
+//! - secondary rays leave surfaces through [`offset_ray_origin`] (Wächter and Binder 2019,
+//!   Ray Tracing Gems ch. 6), see [`Ray::spawn`] and [`Ray::spawn_to`].
+//!
+//! Shapes are never flipped towards the ray: a [`Hit`] reports the geometric normal as the shape
+//! defines it, and one-sidedness is the BSDF's business (Mitsuba's convention).
+//!
+//! ```
+//! use geometry::{Accel, Ray, Shape, Sphere};
+//! use glam::Vec3;
+//!
+//! let accel = Accel::new(vec![Shape::Sphere(Sphere {
+//!     center: Vec3::ZERO,
+//!     radius: 1.0,
+//!     flip_normals: false,
+//! })]);
+//! let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z);
+//! let hit = accel.intersect(&ray, f32::INFINITY).expect("the ray points at the sphere");
+//! assert!((hit.t - 4.0).abs() < 1e-5);
+//! assert!(hit.ng.abs_diff_eq(Vec3::Z, 1e-6));
+//! ```
+
+mod aabb;
+mod accel;
+mod hit;
+mod mesh;
+mod offset;
+mod ray;
+mod shape;
+mod sphere;
+mod triangle;
+
+pub use aabb::Aabb;
+pub use accel::Accel;
+pub use hit::Hit;
+pub use mesh::{MeshError, TriangleMesh};
+pub use offset::offset_ray_origin;
+pub use ray::Ray;
+pub use shape::Shape;
+pub use sphere::Sphere;

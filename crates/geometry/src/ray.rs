@@ -1,0 +1,99 @@
+//! Rays and the spawning of secondary rays from surfaces.
+
+use glam::Vec3;
+
+use crate::offset::offset_ray_origin;
+
+/// A half-line `origin + t * dir`, `t > 0`, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// Start point in world space.
+    pub origin: Vec3,
+    /// Unit direction.
+    pub dir: Vec3,
+}
+
+impl Ray {
+    /// The ray from `origin` in the direction of `dir`, which is normalised here (it must be
+    /// non-zero and finite).
+    pub fn new(origin: Vec3, dir: Vec3) -> Self {
+        Self {
+            origin,
+            dir: dir.normalize(),
+        }
+    }
+
+    /// The point at distance `t` (world units) along the ray.
+    pub fn at(&self, t: f32) -> Vec3 {
+        self.origin + t * self.dir
+    }
+
+    /// A ray leaving the surface point `p` (unit geometric normal `ng`) in direction `dir`, its
+    /// origin moved off the surface by [`offset_ray_origin`] so it does not hit that surface again.
+    /// Works for both sides: reflection (`dir . ng > 0`) and transmission (`dir . ng < 0`).
+    pub fn spawn(p: Vec3, ng: Vec3, dir: Vec3) -> Self {
+        let dir = dir.normalize();
+        Self {
+            origin: offset_ray_origin(p, ng, dir),
+            dir,
+        }
+    }
+
+    /// A shadow ray from the surface point `p` (unit geometric normal `ng`) towards the surface
+    /// point `target_p` (unit geometric normal `target_ng`), and the `t_max` to trace it with.
+    ///
+    /// Both ends are moved off their surfaces towards each other with [`offset_ray_origin`], so
+    /// `occluded(&ray, t_max)` sees neither the start surface nor the target surface; `t_max` is
+    /// the distance between the two moved points, which differs from `|target_p - p|` by the
+    /// offsets (about `1.5e-5` relative). When the two points coincide the ray has direction `ng`
+    /// and `t_max = 0`, so nothing can block it.
+    pub fn spawn_to(p: Vec3, ng: Vec3, target_p: Vec3, target_ng: Vec3) -> (Self, f32) {
+        let to_target = target_p - p;
+        let origin = offset_ray_origin(p, ng, to_target);
+        let end = offset_ray_origin(target_p, target_ng, -to_target);
+        let d = end - origin;
+        let distance = d.length();
+        if distance > 0.0 && distance.is_finite() && d.dot(to_target) > 0.0 {
+            (
+                Self {
+                    origin,
+                    dir: d / distance,
+                },
+                distance,
+            )
+        } else {
+            (Self { origin, dir: ng }, 0.0)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn new_normalises_and_at_walks_along() {
+        let r = Ray::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(0.0, 3.0, 4.0));
+        assert!((r.dir.length() - 1.0).abs() < 1e-6);
+        assert!(r.at(5.0).abs_diff_eq(Vec3::new(1.0, 5.0, 7.0), 1e-5));
+    }
+
+    #[test]
+    fn spawn_to_ends_short_of_the_target() {
+        let p = Vec3::new(0.0, 0.0, 0.0);
+        let target = Vec3::new(0.0, 0.0, 2.0);
+        let (ray, t_max) = Ray::spawn_to(p, Vec3::Z, target, Vec3::NEG_Z);
+        assert!(ray.origin.z > 0.0);
+        assert!(ray.at(t_max).z < 2.0);
+        assert!(t_max < 2.0 && t_max > 1.999);
+        assert!(ray.dir.abs_diff_eq(Vec3::Z, 1e-6));
+    }
+
+    #[test]
+    fn spawn_to_the_same_point_has_zero_length() {
+        let p = Vec3::new(1.0, 1.0, 1.0);
+        let (ray, t_max) = Ray::spawn_to(p, Vec3::Y, p, Vec3::NEG_Y);
+        assert_eq!(t_max, 0.0);
+        assert!(ray.dir.is_finite() && ray.origin.is_finite());
+    }
+}

@@ -1,0 +1,197 @@
+//! Watertight ray-triangle intersection (Woop, Benthin and Wald, "Watertight Ray/Triangle
+//! Intersection", JCGT 2013).
+//!
+//! The ray is made the +z axis of a sheared frame; each vertex is transformed once, and the
+//! three edge functions are 2D cross products of transformed vertices. A shared edge is evaluated
+//! from the same transformed vertices by both of its triangles, with opposite signs, so a ray can
+//! never pass between them; exact zeros are re-evaluated in double precision.
+//!
+//! A hit must also lie conservatively in front of the origin: its `t` has to exceed a bound on
+//! the rounding error of `t` (the bound of pbrt-v4, section 6.8.4), which grows with the distance
+//! of the vertices from the origin. Without it, a ray leaving a large triangle whose own hit point
+//! has small coordinates (a 1000-unit floor through the origin) can re-hit it at a `t` that is
+//! pure rounding noise.
+
+use glam::{Mat3A, Vec3, Vec3A};
+
+/// Per-ray data of the watertight test: the ray origin and the shear that maps the ray
+/// direction to +z.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RayShear {
+    origin: Vec3A,
+    /// Rows: `x' = v[kx] - sx v[kz]`, `y' = v[ky] - sy v[kz]`, `z' = sz v[kz]`.
+    shear: Mat3A,
+}
+
+/// Barycentric coordinates `(b0, b1, b2)` of `p0`, `p1`, `p2` and the distance of a hit.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TriangleHit {
+    pub t: f32,
+    pub bary: Vec3,
+}
+
+impl RayShear {
+    /// Prepares the shear for the ray `origin + t * dir` (`dir` non-zero).
+    pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
+        let kz = dir.abs().max_position();
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        // Keep the winding of the projected triangle: swap when the ray looks down -kz.
+        if dir[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let sz = 1.0 / dir[kz];
+        let mut cols = [Vec3A::ZERO; 3];
+        cols[kx] = Vec3A::X;
+        cols[ky] = Vec3A::Y;
+        cols[kz] = Vec3A::new(-dir[kx] * sz, -dir[ky] * sz, sz);
+        Self {
+            origin,
+            shear: Mat3A::from_cols(cols[0], cols[1], cols[2]),
+        }
+    }
+
+    /// The hit of the ray with triangle `v` (either side) with `0 < t < t_max`, if any.
+    #[inline(always)]
+    pub fn intersect(&self, v: &[Vec3A; 3], t_max: f32) -> Option<TriangleHit> {
+        let a = self.shear.mul_vec3a(v[0] - self.origin);
+        let b = self.shear.mul_vec3a(v[1] - self.origin);
+        let c = self.shear.mul_vec3a(v[2] - self.origin);
+        let mut u = c.x * b.y - c.y * b.x;
+        let mut v_ = a.x * c.y - a.y * c.x;
+        let mut w = b.x * a.y - b.y * a.x;
+        if u == 0.0 || v_ == 0.0 || w == 0.0 {
+            let cross =
+                |p: Vec3A, q: Vec3A| (p.x as f64 * q.y as f64 - p.y as f64 * q.x as f64) as f32;
+            u = cross(c, b);
+            v_ = cross(a, c);
+            w = cross(b, a);
+        }
+        if (u < 0.0 || v_ < 0.0 || w < 0.0) && (u > 0.0 || v_ > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v_ + w;
+        if det == 0.0 {
+            return None;
+        }
+        let t_scaled = u * a.z + v_ * b.z + w * c.z;
+        // 0 < t_scaled / det < t_max without dividing.
+        let inside = if det > 0.0 {
+            t_scaled > 0.0 && t_scaled < t_max * det
+        } else {
+            t_scaled < 0.0 && t_scaled > t_max * det
+        };
+        if !inside {
+            return None;
+        }
+        let inv_det = 1.0 / det;
+        let t = t_scaled * inv_det;
+        if !(t > t_error_bound(a, b, c, Vec3A::new(u, v_, w), inv_det) && t < t_max) {
+            return None;
+        }
+        Some(TriangleHit {
+            t,
+            bary: Vec3::new(u, v_, w) * inv_det,
+        })
+    }
+}
+
+/// `n u / (1 - n u)` with `u = 2^-24`: the relative error bound of `n` rounded operations.
+const fn gamma(n: f32) -> f32 {
+    let u = f32::EPSILON * 0.5;
+    n * u / (1.0 - n * u)
+}
+
+/// Bound on the absolute rounding error of `t` computed from the sheared vertices `a`, `b`, `c`,
+/// the edge functions `edges` and `1 / det`.
+#[inline(always)]
+fn t_error_bound(a: Vec3A, b: Vec3A, c: Vec3A, edges: Vec3A, inv_det: f32) -> f32 {
+    let max = a.abs().max(b.abs()).max(c.abs());
+    let delta_z = gamma(3.0) * max.z;
+    let delta_x = gamma(5.0) * (max.x + max.z);
+    let delta_y = gamma(5.0) * (max.y + max.z);
+    let delta_e = 2.0 * (gamma(2.0) * max.x * max.y + delta_y * max.x + delta_x * max.y);
+    let max_e = edges.abs().max_element();
+    3.0 * (gamma(3.0) * max_e * max.z + delta_e * max.z + delta_z * max_e) * inv_det.abs()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri() -> [Vec3A; 3] {
+        [
+            Vec3A::new(0.0, 0.0, -2.0),
+            Vec3A::new(1.0, 0.0, -2.0),
+            Vec3A::new(0.0, 1.0, -2.0),
+        ]
+    }
+
+    #[test]
+    fn hit_distance_and_barycentrics() {
+        let shear = RayShear::new(Vec3A::new(0.25, 0.5, 0.0), Vec3A::NEG_Z);
+        let hit = shear.intersect(&tri(), f32::INFINITY).expect("inside");
+        assert_eq!(hit.t, 2.0);
+        assert!(hit.bary.abs_diff_eq(Vec3::new(0.25, 0.25, 0.5), 1e-6));
+        // Both sides hit, since nothing is culled.
+        let back = RayShear::new(Vec3A::new(0.25, 0.5, -4.0), Vec3A::Z);
+        assert_eq!(
+            back.intersect(&tri(), f32::INFINITY).map(|h| h.t),
+            Some(2.0)
+        );
+    }
+
+    #[test]
+    fn misses_outside_behind_and_beyond_t_max() {
+        let outside = RayShear::new(Vec3A::new(0.75, 0.5, 0.0), Vec3A::NEG_Z);
+        assert!(outside.intersect(&tri(), f32::INFINITY).is_none());
+        let behind = RayShear::new(Vec3A::new(0.25, 0.25, 0.0), Vec3A::Z);
+        assert!(behind.intersect(&tri(), f32::INFINITY).is_none());
+        let short = RayShear::new(Vec3A::new(0.25, 0.25, 0.0), Vec3A::NEG_Z);
+        assert!(short.intersect(&tri(), 2.0).is_none());
+    }
+
+    #[test]
+    fn rounding_noise_behind_the_origin_is_not_a_hit() {
+        // A ray leaving a 2000-unit floor upwards, from 2^-16 above it at a point with small
+        // coordinates: t comes out at about +6e-5 though the floor lies behind the origin.
+        let floor = [
+            Vec3A::new(-1000.0, -1000.0, 0.0),
+            Vec3A::new(1000.0, 1000.0, 0.0),
+            Vec3A::new(-1000.0, 1000.0, 0.0),
+        ];
+        let origin = Vec3A::new(-381.40607, 200.33887, 1.0 / 65536.0);
+        let dir = Vec3A::new(0.734063, -0.3494725, 0.58225465);
+        assert!(
+            RayShear::new(origin, dir)
+                .intersect(&floor, f32::INFINITY)
+                .is_none()
+        );
+        // Turned downwards it hits once t clears the error bound, which is about 1e-2 here
+        // (1e-5 of the vertices' distance from the origin; pbrt's bound is conservative).
+        let down = dir * Vec3A::new(1.0, 1.0, -1.0);
+        for (height, hits) in [(1e-1, true), (3e-2, true), (1e-3, false)] {
+            let from = Vec3A::new(origin.x, origin.y, height);
+            let hit = RayShear::new(from, down).intersect(&floor, f32::INFINITY);
+            assert_eq!(hit.is_some(), hits, "height {height}: {hit:?}");
+            if let Some(hit) = hit {
+                assert!((hit.t - height / 0.58225465).abs() < 1e-3, "t = {}", hit.t);
+            }
+        }
+    }
+
+    #[test]
+    fn degenerate_triangle_never_hits() {
+        let line = [Vec3A::ZERO, Vec3A::X, Vec3A::new(2.0, 0.0, 0.0)];
+        let point = [Vec3A::ONE; 3];
+        for dir in [
+            Vec3A::NEG_Z,
+            Vec3A::new(1.0, 0.0, -1.0).normalize(),
+            Vec3A::Y,
+        ] {
+            let shear = RayShear::new(Vec3A::new(0.5, 0.0, 1.0), dir);
+            assert!(shear.intersect(&line, f32::INFINITY).is_none());
+            assert!(shear.intersect(&point, f32::INFINITY).is_none());
+        }
+    }
+}
