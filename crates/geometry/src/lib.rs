@@ -32,6 +32,8 @@
 //! assert!(hit.ng.abs_diff_eq(Vec3::Z, 1e-6));
 //! ```
 
+#![warn(missing_docs)]
+
 mod aabb;
 mod accel;
 mod hit;

@@ -45,8 +45,9 @@ impl Ray {
     /// Both ends are moved off their surfaces towards each other with [`offset_ray_origin`], so
     /// `occluded(&ray, t_max)` sees neither the start surface nor the target surface; `t_max` is
     /// the distance between the two moved points, which differs from `|target_p - p|` by the
-    /// offsets (about `1.5e-5` relative). When the two points coincide the ray has direction `ng`
-    /// and `t_max = 0`, so nothing can block it.
+    /// offsets (about `1.5e-5` relative). When the points are so close that the moved points
+    /// coincide or pass each other, the ray has direction `ng` and `t_max = 0`, so nothing can
+    /// block it.
     pub fn spawn_to(p: Vec3, ng: Vec3, target_p: Vec3, target_ng: Vec3) -> (Self, f32) {
         let to_target = target_p - p;
         let origin = offset_ray_origin(p, ng, to_target);

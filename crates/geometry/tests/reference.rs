@@ -265,3 +265,32 @@ fn bounds_cover_every_shape() {
         assert!(accel.bounds().contains(b.min) && accel.bounds().contains(b.max));
     }
 }
+
+#[test]
+fn accel_can_be_shared_between_threads() {
+    fn shareable<T: Send + Sync>() {}
+    shareable::<Accel>();
+    let accel = Accel::new(vec![Shape::Sphere(Sphere {
+        center: Vec3::ZERO,
+        radius: 1.0,
+        flip_normals: false,
+    })]);
+    let hits: Vec<bool> = std::thread::scope(|scope| {
+        let workers: Vec<_> = [Vec3::X, Vec3::Y]
+            .map(|d| {
+                let accel = &accel;
+                scope.spawn(move || {
+                    accel
+                        .intersect(&Ray::new(-3.0 * d, d), f32::INFINITY)
+                        .is_some()
+                })
+            })
+            .into_iter()
+            .collect();
+        workers
+            .into_iter()
+            .map(|w| w.join().expect("worker"))
+            .collect()
+    });
+    assert_eq!(hits, [true, true]);
+}
