@@ -13,7 +13,6 @@ pub type MaterialId = u32;
 
 /// The renderable scene: one acceleration structure over all shapes, a material per shape, and
 /// the lights, some of which are attached to shapes.
-#[derive(Debug)]
 pub struct World {
     accel: Accel,
     materials: Vec<Bsdf>,

@@ -23,7 +23,7 @@ impl MeshAreaLight {
     pub fn new(triangles: Vec<[Vec3; 3]>, radiance: Vec3) -> Option<Self> {
         let areas: Vec<f32> = triangles.iter().map(triangle_area).collect();
         let total_area: f32 = areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32;
-        let area_distribution = CdfTable::new(&areas)?;
+        let area_distribution = CdfTable::new(&areas).ok()?;
         Some(Self {
             triangles,
             area_distribution,

@@ -12,6 +12,9 @@ use std::f32::consts::{PI, TAU};
 /// 1 − cos θ_max cancels catastrophically in f32 for small or distant spheres.
 const SMALL_CONE_SIN2: f32 = 0.000_685_23;
 
+/// Relative tolerance on the squared distance below which a point counts as on the sphere.
+const SURFACE_TOLERANCE: f32 = 1e-3;
+
 /// A sphere emitting constant radiance outwards (inwards when its normals are flipped).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SphereAreaLight {
@@ -37,14 +40,14 @@ impl SphereAreaLight {
     }
 
     /// From outside: a direction uniform in the cone of the visible cap (pbrt-v4's method with a
-    /// series expansion for small cones). From inside: a point uniform by area.
+    /// series expansion for small cones). From inside or on the sphere: a point uniform by area.
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        if self.samples_by_area(p) {
+            return self.sample_area(p, u);
+        }
         let to_center = self.center - p;
         let dc2 = to_center.length_squared();
         let r2 = self.radius * self.radius;
-        if dc2 <= r2 {
-            return self.sample_area_from_inside(p, u);
-        }
         if self.flip_normals {
             return None;
         }
@@ -89,7 +92,7 @@ impl SphereAreaLight {
         })
     }
 
-    fn sample_area_from_inside(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+    fn sample_area(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         let outward = sample_uniform_sphere(u);
         let p_light = self.center + self.radius * outward;
         let n_light = if self.flip_normals { -outward } else { outward };
@@ -121,9 +124,7 @@ impl SphereAreaLight {
     /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`
     /// with geometric normal `n_light` on the sphere.
     pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
-        let dc2 = (self.center - p).length_squared();
-        let r2 = self.radius * self.radius;
-        if dc2 <= r2 {
+        if self.samples_by_area(p) {
             let to_light = p_light - p;
             let distance = to_light.length();
             if !(distance > 0.0) {
@@ -138,13 +139,23 @@ impl SphereAreaLight {
         if self.flip_normals {
             return 0.0;
         }
-        let sin2_max = r2 / dc2;
+        let r2 = self.radius * self.radius;
+        let sin2_max = r2 / (self.center - p).length_squared();
         let one_minus_cos_max = if sin2_max < SMALL_CONE_SIN2 {
             0.5 * sin2_max
         } else {
             1.0 - (1.0 - sin2_max).max(0.0).sqrt()
         };
         1.0 / (TAU * one_minus_cos_max)
+    }
+
+    /// True when points are sampled uniformly by area rather than by cone: from inside the sphere
+    /// and from its surface (within rounding: a shading point on the sphere itself may land a
+    /// hair outside, where the cone would degenerate to a hemisphere).
+    #[inline]
+    fn samples_by_area(&self, p: Vec3) -> bool {
+        let r2 = self.radius * self.radius;
+        (self.center - p).length_squared() <= r2 * (1.0 + SURFACE_TOLERANCE)
     }
 
     /// Density per unit area of a point uniform on the sphere: 1 / (4π r²).

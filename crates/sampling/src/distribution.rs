@@ -2,6 +2,8 @@
 
 use std::fmt;
 
+pub use crate::cdf_table::CdfTable;
+
 /// Why an [`AliasTable`] could not be built from a list of weights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AliasTableError {

@@ -33,6 +33,7 @@
 
 #![warn(missing_docs)]
 
+mod cdf_table;
 pub mod chi2;
 pub mod distribution;
 pub mod frame;

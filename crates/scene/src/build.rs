@@ -16,7 +16,6 @@ use materials::{
 
 /// A scene ready to render: what light transport needs, the camera, and the description's
 /// render settings (film, sampler, integrator).
-#[derive(Debug)]
 pub struct RenderScene {
     /// Geometry, materials and lights.
     pub world: World,
