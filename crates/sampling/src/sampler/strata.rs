@@ -25,7 +25,7 @@ pub(crate) fn stratum_point(stratum: u32, count: u32, jitter: f32) -> f32 {
 pub(crate) fn closest_factorisation(count: u32) -> (u32, u32) {
     let count = count.max(1);
     let mut columns = count.isqrt();
-    while count % columns != 0 {
+    while !count.is_multiple_of(columns) {
         columns -= 1;
     }
     (columns, count / columns)
