@@ -57,10 +57,10 @@ impl Rng {
         s
     }
 
-    /// A float uniform in [0, 1), never 1.0: the top 24 bits scaled by 2⁻²⁴.
+    /// A float uniform in [0, 1), never 1.0: see [`unit_f32_from_bits`].
     #[inline]
     pub fn next_f32(&mut self) -> f32 {
-        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+        unit_f32_from_bits(self.next_u32())
     }
 
     /// An integer uniform in [0, n) without modulo bias (Lemire's multiply-and-reject method).
@@ -81,6 +81,13 @@ impl Rng {
         }
         (product >> 32) as u32
     }
+}
+
+/// Maps 32 uniform bits to a float uniform in [0, 1): the top 24 bits scaled by 2⁻²⁴, so every
+/// result is a multiple of 2⁻²⁴ and the largest is 1 − 2⁻²⁴ (a plain `bits as f32 / 2³²` can round to 1.0).
+#[inline]
+pub fn unit_f32_from_bits(bits: u32) -> f32 {
+    (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
 /// The seed of the stream for one (pixel, sample index, seed) triple: the three are hashed in turn.

@@ -1,0 +1,132 @@
+//! Samplers: the uniform numbers in [0, 1) that drive one pixel sample, handed out dimension by dimension.
+//!
+//! A renderer calls [`Sampler::start_pixel_sample`] for each (pixel, sample index) and then asks for
+//! numbers with [`Sampler::next_1d`] and [`Sampler::next_2d`]. Every call opens a new *dimension*
+//! (dimensions are counted in call order from 0 for each pixel sample), and each dimension is decorrelated
+//! from the others by a scramble or permutation keyed by a hash of (pixel, dimension, seed). Strata's
+//! integrators use this fixed order, and consume a dimension only for a feature the scene has:
+//!
+//! 1. pixel position, 2D;
+//! 2. lens position, 2D, only if the camera has a lens;
+//! 3. for each bounce: light choice 1D, point on the light 2D, BSDF lobe 1D, BSDF direction 2D,
+//!    Russian roulette 1D.
+//!
+//! Every sampler is a pure function of (seed, samples per pixel, pixel, sample index, dimension): any
+//! pixel sample can be replayed on its own, in any order and on any thread. None allocates per sample.
+//!
+//! | sampler | per-pixel pattern | across pixels |
+//! |---|---|---|
+//! | [`IndependentSampler`] | independent uniform numbers | independent |
+//! | [`StratifiedSampler`] | multi-jittered strata in every dimension | independent permutations |
+//! | [`BlueNoiseSampler`] | a rank-1 lattice (Kronecker) point set | blue-noise shifts: screen-space blue-noise error |
+
+mod blue_noise;
+mod blue_noise_tile;
+mod independent;
+mod strata;
+mod stratified;
+
+pub use blue_noise::BlueNoiseSampler;
+pub use independent::IndependentSampler;
+pub use stratified::StratifiedSampler;
+
+use glam::{UVec2, Vec2};
+
+/// A source of sample values in [0, 1) for Monte Carlo integration over a pixel, one dimension at a time.
+pub trait Sampler {
+    /// Begins sample `sample_index` of `pixel`: the next call returns dimension 0 of that sample.
+    fn start_pixel_sample(&mut self, pixel: UVec2, sample_index: u32);
+
+    /// The next dimension's value, in [0, 1) (never 1.0).
+    fn next_1d(&mut self) -> f32;
+
+    /// The next dimension's pair of values, each in [0, 1) (never 1.0); one call is one (2D) dimension.
+    fn next_2d(&mut self) -> Vec2;
+}
+
+/// Which sampler an [`AnySampler`] is: the user-facing choice of sampling pattern.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SamplerKind {
+    /// [`IndependentSampler`]: independent uniform random numbers.
+    #[default]
+    Independent,
+    /// [`StratifiedSampler`]: jittered, multi-jittered strata permuted per pixel and dimension.
+    Stratified,
+    /// [`BlueNoiseSampler`]: blue-noise-shifted Kronecker point sets (screen-space blue-noise error).
+    BlueNoise,
+}
+
+/// Any of the three samplers behind one type, dispatched by `match` (no trait objects in the hot loop).
+#[derive(Clone, Debug)]
+pub enum AnySampler {
+    /// An [`IndependentSampler`].
+    Independent(IndependentSampler),
+    /// A [`StratifiedSampler`].
+    Stratified(StratifiedSampler),
+    /// A [`BlueNoiseSampler`].
+    BlueNoise(BlueNoiseSampler),
+}
+
+impl AnySampler {
+    /// The sampler of the given kind for `seed` and `samples_per_pixel` (0 is treated as 1).
+    pub fn new(kind: SamplerKind, seed: u32, samples_per_pixel: u32) -> Self {
+        match kind {
+            SamplerKind::Independent => {
+                Self::Independent(IndependentSampler::new(seed, samples_per_pixel))
+            }
+            SamplerKind::Stratified => {
+                Self::Stratified(StratifiedSampler::new(seed, samples_per_pixel))
+            }
+            SamplerKind::BlueNoise => {
+                Self::BlueNoise(BlueNoiseSampler::new(seed, samples_per_pixel))
+            }
+        }
+    }
+
+    /// Which sampler this is.
+    pub fn kind(&self) -> SamplerKind {
+        match self {
+            Self::Independent(_) => SamplerKind::Independent,
+            Self::Stratified(_) => SamplerKind::Stratified,
+            Self::BlueNoise(_) => SamplerKind::BlueNoise,
+        }
+    }
+
+    /// The number of samples per pixel the pattern was built for.
+    pub fn samples_per_pixel(&self) -> u32 {
+        match self {
+            Self::Independent(s) => s.samples_per_pixel(),
+            Self::Stratified(s) => s.samples_per_pixel(),
+            Self::BlueNoise(s) => s.samples_per_pixel(),
+        }
+    }
+}
+
+impl Sampler for AnySampler {
+    #[inline]
+    fn start_pixel_sample(&mut self, pixel: UVec2, sample_index: u32) {
+        match self {
+            Self::Independent(s) => s.start_pixel_sample(pixel, sample_index),
+            Self::Stratified(s) => s.start_pixel_sample(pixel, sample_index),
+            Self::BlueNoise(s) => s.start_pixel_sample(pixel, sample_index),
+        }
+    }
+
+    #[inline]
+    fn next_1d(&mut self) -> f32 {
+        match self {
+            Self::Independent(s) => s.next_1d(),
+            Self::Stratified(s) => s.next_1d(),
+            Self::BlueNoise(s) => s.next_1d(),
+        }
+    }
+
+    #[inline]
+    fn next_2d(&mut self) -> Vec2 {
+        match self {
+            Self::Independent(s) => s.next_2d(),
+            Self::Stratified(s) => s.next_2d(),
+            Self::BlueNoise(s) => s.next_2d(),
+        }
+    }
+}
