@@ -13,8 +13,9 @@ const KINDS: [SamplerKind; 3] = [
     SamplerKind::Stratified,
     SamplerKind::BlueNoise,
 ];
-/// Chi-square tests in this file (3 kinds × 3 uniformity tests + 3 kinds × 2 decorrelation tests + 1).
-const CHI2_TESTS: u32 = 16;
+/// Chi-square tests in this file: 3 kinds × (3 uniformity + 2 decorrelation + 2 × 3 within-pixel
+/// decorrelation) + 1.
+const CHI2_TESTS: u32 = 34;
 
 /// One dimension's value: a 1D value is (x, 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -288,6 +289,42 @@ fn dimensions_are_not_correlated() {
                 outcome.passed,
                 "{kind:?}, dimensions {a} and {b}: {outcome}"
             );
+        }
+    }
+}
+
+#[test]
+fn dimensions_are_not_correlated_within_one_pixel() {
+    // The 1024 samples of one pixel, as pairs of values from two dimensions, must spread over an
+    // 8 × 8 grid like independent points (16 per cell), not along a few lines: this fails if the
+    // permutations of two dimensions are related (say, rotations of each other), even though over
+    // seeds the pairs would still be uniform.
+    let spp = 1024;
+    for (k, kind) in KINDS.into_iter().enumerate() {
+        for (a, b, axis) in [(1, 3, 0), (2, 4, 1)] {
+            for pixel in [UVec2::new(0, 0), UVec2::new(40, 17), UVec2::new(1000, 999)] {
+                let mut sampler = AnySampler::new(kind, 5 + k as u32, spp);
+                let mut index = 0;
+                let pick = |v: Value| match v {
+                    Value::One(x) => x,
+                    Value::Two(p) => p[axis],
+                };
+                let outcome = chi2_discrete(
+                    64,
+                    |_| {
+                        let v = draw(&mut sampler, pixel, index);
+                        index += 1;
+                        let (x, y) = (pick(v[a]), pick(v[b]));
+                        Some((x * 8.0) as usize * 8 + (y * 8.0) as usize)
+                    },
+                    |_| 1.0 / 64.0,
+                    &chi2_config(0, spp),
+                );
+                assert!(
+                    outcome.passed,
+                    "{kind:?}, pixel {pixel}, dimensions {a} and {b}: {outcome}"
+                );
+            }
         }
     }
 }

@@ -21,7 +21,7 @@ const MAX_TERMS: usize = 100_000;
 
 /// ln Γ(x) for x ≥ 0.5 (Lanczos approximation); NaN below.
 pub(crate) fn ln_gamma(x: f64) -> f64 {
-    if !(x >= 0.5) {
+    if x.is_nan() || x < 0.5 {
         return f64::NAN;
     }
     let z = x - 1.0;
@@ -38,7 +38,7 @@ pub(crate) fn ln_gamma(x: f64) -> f64 {
 /// Uses the power series of P = 1 − Q below x = a + 1 and Legendre's continued fraction for Q above
 /// (evaluated by the modified Lentz method), each where it converges fast.
 pub(crate) fn gamma_q(a: f64, x: f64) -> f64 {
-    if !(a >= 0.5) || !(x >= 0.0) {
+    if a.is_nan() || x.is_nan() || a < 0.5 || x < 0.0 {
         return f64::NAN;
     }
     if x == 0.0 {

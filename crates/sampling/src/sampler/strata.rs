@@ -1,22 +1,40 @@
 //! Exact placement of jittered points in strata of [0, 1).
 
-/// The point `jitter` of the way through stratum `stratum` of `count` equal strata of [0, 1).
-///
-/// The result is guaranteed to lie in [stratum / count, (stratum + 1) / count) in exact arithmetic (and so
-/// is never 1.0), even where rounding `(stratum + jitter) / count` to `f32` would cross a stratum boundary.
-#[inline]
-pub(crate) fn stratum_point(stratum: u32, count: u32, jitter: f32) -> f32 {
-    debug_assert!(stratum < count && (0.0..1.0).contains(&jitter));
-    let lo = f64::from(stratum);
-    let n = f64::from(count);
-    let mut x = ((lo + f64::from(jitter)) / n) as f32;
-    // `f64::from(x) * n` is exact for count < 2²⁹: this tests the stratum without rounding.
-    if f64::from(x) * n < lo {
-        x = x.next_up();
-    } else if f64::from(x) * n >= lo + 1.0 {
-        x = x.next_down();
+/// `count` equal strata of [0, 1).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Strata {
+    count: f64,
+    inverse: f64,
+}
+
+impl Strata {
+    /// Strata of width 1 / `count` (`count` ≥ 1).
+    pub(crate) fn new(count: u32) -> Self {
+        let count = f64::from(count.max(1));
+        Self {
+            count,
+            inverse: 1.0 / count,
+        }
     }
-    x
+
+    /// The point `jitter` (in [0, 1)) of the way through stratum `stratum`.
+    ///
+    /// The result is guaranteed to lie in [stratum / count, (stratum + 1) / count) in exact arithmetic
+    /// (and so is never 1.0), even where rounding to `f32` would cross a stratum boundary.
+    #[inline]
+    pub(crate) fn point(self, stratum: u32, jitter: f32) -> f32 {
+        debug_assert!(f64::from(stratum) < self.count && (0.0..1.0).contains(&jitter));
+        let lo = f64::from(stratum);
+        let mut x = ((lo + f64::from(jitter)) * self.inverse) as f32;
+        // `f64::from(x) * count` is exact for count < 2²⁹: this tests the stratum without rounding.
+        let scaled = f64::from(x) * self.count;
+        if scaled < lo {
+            x = x.next_up();
+        } else if scaled >= lo + 1.0 {
+            x = x.next_down();
+        }
+        x
+    }
 }
 
 /// The factorisation `columns × rows` of `count` closest to square, with `columns ≤ rows`.
@@ -25,7 +43,7 @@ pub(crate) fn stratum_point(stratum: u32, count: u32, jitter: f32) -> f32 {
 pub(crate) fn closest_factorisation(count: u32) -> (u32, u32) {
     let count = count.max(1);
     let mut columns = count.isqrt();
-    while count % columns != 0 {
+    while !count.is_multiple_of(columns) {
         columns -= 1;
     }
     (columns, count / columns)
@@ -36,12 +54,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn stratum_point_stays_inside_its_stratum_at_both_ends() {
+    fn points_stay_inside_their_stratum_at_both_ends() {
         let largest_jitter = 1.0 - f32::EPSILON / 2.0;
         for count in (1..2000).chain([65_535, 1 << 20, 3_000_017]) {
             for stratum in [0, count / 3, count / 2, count - 1] {
                 for jitter in [0.0, 0.5, largest_jitter] {
-                    let x = stratum_point(stratum, count, jitter);
+                    let x = Strata::new(count).point(stratum, jitter);
                     let scaled = f64::from(x) * f64::from(count);
                     assert!(
                         scaled >= f64::from(stratum) && scaled < f64::from(stratum) + 1.0,

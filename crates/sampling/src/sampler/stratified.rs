@@ -1,7 +1,7 @@
 //! The stratified sampler: correlated multi-jittered strata (Kensler 2013) for any sample count.
 
 use super::Sampler;
-use super::strata::{closest_factorisation, stratum_point};
+use super::strata::{Strata, closest_factorisation};
 use crate::hash::{hash2, permute};
 use crate::rng::{Rng, sample_seed};
 use glam::{UVec2, Vec2};
@@ -18,14 +18,15 @@ use glam::{UVec2, Vec2};
 ///
 /// Which sample gets which stratum is a permutation keyed by a hash of (pixel, dimension, block, seed),
 /// so strata are permuted independently per dimension and per pixel: the pixel position and the lens,
-/// light and BSDF dimensions of one sample are not correlated. Jitter comes from the sample's own
-/// [`Rng::for_sample`] stream. Every value is uniform on [0, 1) over random seeds, so estimates are unbiased.
+/// light and BSDF dimensions of one sample are not correlated. Jitter comes from an [`Rng`] stream of
+/// the sample's own. Every value is uniform on [0, 1) over random seeds, so estimates are unbiased.
 #[derive(Clone, Debug)]
 pub struct StratifiedSampler {
     seed: u32,
     samples_per_pixel: u32,
     columns: u32,
     rows: u32,
+    strata: Strata,
     pixel_key: u32,
     sample: u32,
     dimension: u32,
@@ -42,6 +43,7 @@ impl StratifiedSampler {
             samples_per_pixel,
             columns,
             rows,
+            strata: Strata::new(samples_per_pixel),
             pixel_key: 0,
             sample: 0,
             dimension: 0,
@@ -75,14 +77,15 @@ impl Sampler for StratifiedSampler {
         self.sample = sample_index % self.samples_per_pixel;
         self.pixel_key = sample_seed(pixel, block, self.seed);
         self.dimension = 0;
-        self.rng = Rng::for_sample(pixel, sample_index, self.seed);
+        // The jitter stream of this sample: a function of (pixel, block, seed) and the index.
+        self.rng = Rng::new(hash2(self.pixel_key ^ 0x3C6E_F372, self.sample));
     }
 
     #[inline]
     fn next_1d(&mut self) -> f32 {
         let key = self.next_dimension_key();
         let stratum = permute(self.sample, self.samples_per_pixel, key);
-        stratum_point(stratum, self.samples_per_pixel, self.rng.next_f32())
+        self.strata.point(stratum, self.rng.next_f32())
     }
 
     #[inline]
@@ -93,10 +96,15 @@ impl Sampler for StratifiedSampler {
         let (column, row) = (cell % self.columns, cell / self.columns);
         // Within column `column` the samples take distinct sub-columns (one per row), and within
         // row `row` distinct sub-rows (one per column): the N-rooks property on top of the m × n cells.
-        let sub_column = permute(row, self.rows, hash2(key, 1));
-        let sub_row = permute(column, self.columns, hash2(key, 2));
-        let x = stratum_point(column * self.rows + sub_column, n, self.rng.next_f32());
-        let y = stratum_point(row * self.columns + sub_row, n, self.rng.next_f32());
+        // `permute` hashes its key, so distinct constants give unrelated permutations.
+        let sub_column = permute(row, self.rows, key ^ 0x6A09_E667);
+        let sub_row = permute(column, self.columns, key ^ 0xBB67_AE85);
+        let x = self
+            .strata
+            .point(column * self.rows + sub_column, self.rng.next_f32());
+        let y = self
+            .strata
+            .point(row * self.columns + sub_row, self.rng.next_f32());
         Vec2::new(x, y)
     }
 }
