@@ -108,5 +108,8 @@ fn resample(
     }
     let (candidate, target) = (*reservoir.selected()?)?;
     let weight = reservoir.contribution_weight(target);
-    (weight > 0.0).then_some(ChosenLight { weight, ..candidate })
+    (weight > 0.0).then_some(ChosenLight {
+        weight,
+        ..candidate
+    })
 }

@@ -77,9 +77,9 @@ impl PathIntegrator {
                 let background = world.background();
                 if !hidden && background != Vec3::ZERO {
                     let weight = self.emission_weight(&previous, world.environment(), || {
-                        world.environment().map_or(0.0, |e| {
-                            world.lights()[e as usize].pdf_li_environment()
-                        })
+                        world
+                            .environment()
+                            .map_or(0.0, |e| world.lights()[e as usize].pdf_li_environment())
                     });
                     radiance += throughput * background * weight;
                 }
@@ -114,7 +114,8 @@ impl PathIntegrator {
 
             let u_lobe = sampler.next_1d();
             let u_dir = sampler.next_2d();
-            let Some((wi, weight, pdf_dir, delta)) = self.next_direction(&surface, wo, u_lobe, u_dir)
+            let Some((wi, weight, pdf_dir, delta)) =
+                self.next_direction(&surface, wo, u_lobe, u_dir)
             else {
                 break;
             };
@@ -168,7 +169,13 @@ impl PathIntegrator {
         };
         let sample = chosen.sample;
         let visible = if sample.distance.is_finite() {
-            world.unoccluded(surface.hit.p, surface.hit.ng, sample.p_light, sample.n_light, counters)
+            world.unoccluded(
+                surface.hit.p,
+                surface.hit.ng,
+                sample.p_light,
+                sample.n_light,
+                counters,
+            )
         } else {
             world.escapes(surface.hit.p, surface.hit.ng, sample.wi, counters)
         };
@@ -195,7 +202,12 @@ impl PathIntegrator {
         let bsdf = surface.bsdf;
         if self.settings.sample_bsdf || bsdf.is_delta() {
             let s = bsdf.sample(wo, u_lobe, u_dir)?;
-            Some((s.wi, s.f * s.wi.z.abs() / s.pdf_solid_angle, s.pdf_solid_angle, s.is_delta))
+            Some((
+                s.wi,
+                s.f * s.wi.z.abs() / s.pdf_solid_angle,
+                s.pdf_solid_angle,
+                s.is_delta,
+            ))
         } else {
             let (wi, pdf) = sample_uniform_direction(bsdf, wo, u_dir);
             let f = bsdf.eval(wo, wi);

@@ -6,10 +6,10 @@
 //! (points) cannot be hit by a random ray, so each vertex connects to them explicitly: the only
 //! unbiased way to see them. Every other configuration is tested against this one.
 
+use crate::uniform_direction::sample_uniform_direction;
 use crate::{RayCounters, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
-use crate::uniform_direction::sample_uniform_direction;
 use sampling::Sampler;
 
 /// Paths with an unbounded `max_depth` stop after this many vertices: the reference has no

@@ -75,13 +75,22 @@ impl PathSettings {
     /// Names of the techniques these settings switch on, for reports.
     pub fn technique_names(&self) -> Vec<String> {
         let mut names = Vec::new();
-        names.push(if self.sample_bsdf { "bsdf-sampling" } else { "uniform-directions" }.to_string());
+        names.push(
+            if self.sample_bsdf {
+                "bsdf-sampling"
+            } else {
+                "uniform-directions"
+            }
+            .to_string(),
+        );
         if self.sample_lights {
             names.push("nee".to_string());
             names.push(match self.light_selection {
                 LightSelectionMode::Uniform => "light-selection-uniform".to_string(),
                 LightSelectionMode::Power => "light-selection-power".to_string(),
-                LightSelectionMode::Ris { candidates } => format!("light-selection-ris-{candidates}"),
+                LightSelectionMode::Ris { candidates } => {
+                    format!("light-selection-ris-{candidates}")
+                }
             });
             match self.mis {
                 Mis::Off => {}

@@ -63,7 +63,11 @@ impl World {
                 materials.len()
             ));
         }
-        if let Some(l) = shape_light.iter().flatten().find(|&&l| l as usize >= lights.len()) {
+        if let Some(l) = shape_light
+            .iter()
+            .flatten()
+            .find(|&&l| l as usize >= lights.len())
+        {
             return Err(format!("light {l} out of range ({} lights)", lights.len()));
         }
         let environments: Vec<u32> = (0..lights.len() as u32)
@@ -160,7 +164,8 @@ impl World {
     /// Radiance arriving along a ray that escapes the scene.
     #[inline]
     pub fn background(&self) -> Vec3 {
-        self.environment
-            .map_or(Vec3::ZERO, |e| self.lights[e as usize].radiance_from_direction())
+        self.environment.map_or(Vec3::ZERO, |e| {
+            self.lights[e as usize].radiance_from_direction()
+        })
     }
 }

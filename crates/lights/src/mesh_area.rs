@@ -63,7 +63,7 @@ impl MeshAreaLight {
         let n_light = (p1 - p0).cross(p2 - p0).normalize_or_zero();
         let to_light = p_light - p;
         let distance = to_light.length();
-        if !(distance > 0.0) {
+        if distance.is_nan() || distance <= 0.0 {
             return None;
         }
         let wi = to_light / distance;
@@ -73,7 +73,7 @@ impl MeshAreaLight {
         }
         let pdf_solid_angle =
             pdf_area_to_solid_angle(1.0 / self.total_area, distance, cos_at_light);
-        if !(pdf_solid_angle > 0.0) || !pdf_solid_angle.is_finite() {
+        if !(pdf_solid_angle.is_finite() && pdf_solid_angle > 0.0) {
             return None;
         }
         Some(LightSample {
@@ -92,7 +92,7 @@ impl MeshAreaLight {
     pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
         let to_light = p_light - p;
         let distance = to_light.length();
-        if !(distance > 0.0) {
+        if distance.is_nan() || distance <= 0.0 {
             return 0.0;
         }
         let cos_at_light = -n_light.dot(to_light / distance);

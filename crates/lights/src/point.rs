@@ -18,7 +18,7 @@ impl PointLight {
     pub fn sample_li(&self, p: Vec3) -> Option<LightSample> {
         let to_light = self.position - p;
         let distance_squared = to_light.length_squared();
-        if !(distance_squared > 0.0) || !distance_squared.is_finite() {
+        if !(distance_squared.is_finite() && distance_squared > 0.0) {
             return None;
         }
         let distance = distance_squared.sqrt();

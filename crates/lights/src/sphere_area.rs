@@ -60,21 +60,29 @@ impl SphereAreaLight {
         } else {
             let cos_max = (1.0 - sin2_max).max(0.0).sqrt();
             let cos_theta = 1.0 - u.x * (1.0 - cos_max);
-            (cos_theta, (1.0 - cos_theta * cos_theta).max(0.0), 1.0 - cos_max)
+            (
+                cos_theta,
+                (1.0 - cos_theta * cos_theta).max(0.0),
+                1.0 - cos_max,
+            )
         };
         // Angle at the centre between the axis (towards p) and the sampled surface point.
-        let cos_alpha = sin2_theta / sin_max
-            + cos_theta * (1.0 - sin2_theta / sin2_max).max(0.0).sqrt();
+        let cos_alpha =
+            sin2_theta / sin_max + cos_theta * (1.0 - sin2_theta / sin2_max).max(0.0).sqrt();
         let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
         let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
         let axis = Frame::from_normal(-to_center / dc);
         let n_light = axis
-            .to_world(Vec3::new(sin_alpha * cos_phi, sin_alpha * sin_phi, cos_alpha))
+            .to_world(Vec3::new(
+                sin_alpha * cos_phi,
+                sin_alpha * sin_phi,
+                cos_alpha,
+            ))
             .normalize();
         let p_light = self.center + self.radius * n_light;
         let to_light = p_light - p;
         let distance = to_light.length();
-        if !(distance > 0.0) {
+        if distance.is_nan() || distance <= 0.0 {
             return None;
         }
         let pdf_solid_angle = 1.0 / (TAU * one_minus_cos_max);
@@ -98,7 +106,7 @@ impl SphereAreaLight {
         let n_light = if self.flip_normals { -outward } else { outward };
         let to_light = p_light - p;
         let distance = to_light.length();
-        if !(distance > 0.0) {
+        if distance.is_nan() || distance <= 0.0 {
             return None;
         }
         let wi = to_light / distance;
@@ -127,7 +135,7 @@ impl SphereAreaLight {
         if self.samples_by_area(p) {
             let to_light = p_light - p;
             let distance = to_light.length();
-            if !(distance > 0.0) {
+            if distance.is_nan() || distance <= 0.0 {
                 return 0.0;
             }
             let cos_at_light = -n_light.dot(to_light / distance);

@@ -140,9 +140,17 @@ fn tiny_far_sphere_stays_finite_at_u_extremes() {
         Vec2::new(one_minus, one_minus),
         Vec2::new(0.5, one_minus),
     ] {
-        let s = light.sample_li(Vec3::ZERO, u).expect("the sphere is visible");
-        assert!(s.wi.is_finite() && (s.wi.length() - 1.0).abs() < 1e-4, "{s:?}");
-        assert!(s.pdf_solid_angle.is_finite() && s.pdf_solid_angle > 0.0, "{s:?}");
+        let s = light
+            .sample_li(Vec3::ZERO, u)
+            .expect("the sphere is visible");
+        assert!(
+            s.wi.is_finite() && (s.wi.length() - 1.0).abs() < 1e-4,
+            "{s:?}"
+        );
+        assert!(
+            s.pdf_solid_angle.is_finite() && s.pdf_solid_angle > 0.0,
+            "{s:?}"
+        );
         assert!(s.wi.x > 0.999_999, "sample left the cone: {s:?}");
     }
 }

@@ -48,8 +48,8 @@ impl Drop for Worker<'_> {
 /// Runs `strata render` as `args` say.
 pub fn run(args: &RenderArgs) -> Result<(), CommandError> {
     let load_start = Instant::now();
-    let mut desc = scene::parse_file(&args.scene, &[])
-        .map_err(|e| CommandError::BadInput(e.to_string()))?;
+    let mut desc =
+        scene::parse_file(&args.scene, &[]).map_err(|e| CommandError::BadInput(e.to_string()))?;
     if let (Some(width), Some(height)) = (args.width, args.height) {
         desc.film.width = width;
         desc.film.height = height;

@@ -124,7 +124,10 @@ mod tests {
             );
             if counts[i] > 0 {
                 let mean = remapped_sums[i] / f64::from(counts[i]);
-                assert!((mean - 0.5).abs() < 1.0 / f64::from(counts[i]), "index {i}: mean {mean}");
+                assert!(
+                    (mean - 0.5).abs() < 1.0 / f64::from(counts[i]),
+                    "index {i}: mean {mean}"
+                );
             }
         }
     }
@@ -142,11 +145,17 @@ mod tests {
     #[test]
     fn invalid_weights_are_errors() {
         assert_eq!(CdfTable::new(&[]).unwrap_err(), AliasTableError::Empty);
-        assert_eq!(CdfTable::new(&[0.0, 0.0]).unwrap_err(), AliasTableError::ZeroTotal);
+        assert_eq!(
+            CdfTable::new(&[0.0, 0.0]).unwrap_err(),
+            AliasTableError::ZeroTotal
+        );
         assert_eq!(
             CdfTable::new(&[1.0, f32::NAN]).unwrap_err(),
             AliasTableError::NonFinite(1)
         );
-        assert_eq!(CdfTable::new(&[1.0, -1.0]).unwrap_err(), AliasTableError::Negative(1));
+        assert_eq!(
+            CdfTable::new(&[1.0, -1.0]).unwrap_err(),
+            AliasTableError::Negative(1)
+        );
     }
 }

@@ -166,12 +166,7 @@ fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
                 MicrofacetDistribution::Ggx => MicrofacetKind::Ggx,
             };
             let microfacet = Microfacet::new(kind, *alpha).map_err(|e| e.to_string())?;
-            RoughConductor::new(
-                microfacet,
-                ComplexIor::new(*eta, *k),
-                *specular_reflectance,
-            )
-            .into()
+            RoughConductor::new(microfacet, ComplexIor::new(*eta, *k), *specular_reflectance).into()
         }
         BsdfDesc::Dielectric {
             int_ior,

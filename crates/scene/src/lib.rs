@@ -53,13 +53,13 @@ mod xml;
 
 use std::path::Path;
 
+pub use build::{RenderScene, build};
+pub use camera::{Camera, ThinLens};
 pub use desc::{
     AreaEmitterDesc, BsdfDesc, EmitterDesc, FilmDesc, FilterDesc, FovAxis, Geometry,
     IntegratorDesc, IntegratorKind, MeshDesc, MicrofacetDistribution, SamplerDesc, SamplerKind,
     SceneDesc, SensorDesc, ShapeDesc, SphereDesc, ThinLensDesc,
 };
-pub use build::{RenderScene, build};
-pub use camera::{Camera, ThinLens};
 pub use error::LoadError;
 pub use features::SceneFeatures;
 
