@@ -75,17 +75,14 @@ fn bad_flags_exit_2() {
 }
 
 #[test]
-fn render_is_not_wired_yet_and_exits_1() {
-    let output = strata(&[
-        "render",
-        "scene.xml",
-        "--out",
-        "o.exr",
-        "--time",
-        "0.5",
-        "--integrator",
-        "mis",
-    ]);
-    assert_eq!(output.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&output.stderr).contains("not wired"));
+fn render_of_a_missing_scene_exits_2_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o.exr");
+    let output = strata(&["render", "no-such-scene.xml", "--out", arg(&out)]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("no-such-scene.xml"));
+    assert!(
+        !out.exists(),
+        "no image may be written for a scene that failed to load"
+    );
 }
