@@ -1,28 +1,108 @@
 //! `cargo xtask <job>`: the project's automation, one subcommand per job.
+//!
+//! - `render-all`: the scene suite's error-against-time report (not built yet).
+//! - `check`: the statistical checks (run through `cargo test` for now).
+//! - `crosscheck [--spp N] [SCENE.xml ...]`: Strata's reference integrator against Mitsuba 3,
+//!   block by block (needs `pip install mitsuba`; never run in CI).
 
-use std::process::ExitCode;
+mod crosscheck;
 
-const USAGE: &str = "usage: cargo xtask <render-all | check>";
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+const USAGE: &str =
+    "usage: cargo xtask <render-all | check | crosscheck [--spp N] [SCENE.xml ...]>";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    match args.first().map(String::as_str) {
+    let result = match args.first().map(String::as_str) {
         Some("render-all") => {
             println!(
-                "render-all: the scene suite is not built yet (scenes/ holds no scenes); \
-                 nothing to render"
+                "render-all: the error-against-time report is not built yet; \
+                 `strata render scenes/<scene>.xml --out image.exr` renders one scene"
             );
-            ExitCode::SUCCESS
+            Ok(true)
         }
         Some("check") => {
             println!(
                 "check: the statistical checks run through `cargo test --release --workspace` for now"
             );
-            ExitCode::SUCCESS
+            Ok(true)
         }
-        _ => {
-            eprintln!("{USAGE}");
+        Some("crosscheck") => crosscheck(&args[1..]),
+        _ => Err(USAGE.to_string()),
+    };
+    match result {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::FAILURE,
+        Err(message) => {
+            eprintln!("xtask: {message}");
             ExitCode::from(2)
         }
     }
+}
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the workspace")
+        .to_path_buf()
+}
+
+/// Builds the `strata` binary in release mode and returns its path.
+fn build_strata() -> Result<PathBuf, String> {
+    let root = workspace_root();
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    let status = Command::new(cargo)
+        .current_dir(&root)
+        .args([
+            "build",
+            "--quiet",
+            "--release",
+            "--package",
+            "render",
+            "--bin",
+            "strata",
+        ])
+        .status()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    if !status.success() {
+        return Err("building strata failed".to_string());
+    }
+    Ok(root.join("target/release/strata"))
+}
+
+fn crosscheck(args: &[String]) -> Result<bool, String> {
+    let mut spp = 256;
+    let mut scenes = Vec::new();
+    let mut rest = args.iter();
+    while let Some(arg) = rest.next() {
+        if arg == "--spp" {
+            spp = rest
+                .next()
+                .and_then(|v| v.parse().ok())
+                .filter(|&n| n > 0)
+                .ok_or("--spp takes a positive whole number")?;
+        } else {
+            scenes.push(PathBuf::from(arg));
+        }
+    }
+    if scenes.is_empty() {
+        let dir = workspace_root().join("scenes");
+        let entries = std::fs::read_dir(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        scenes = entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+            .collect();
+        scenes.sort();
+    }
+    let strata = build_strata()?;
+    crosscheck::run(
+        &strata,
+        &crosscheck::Options {
+            scenes,
+            spp,
+            out_dir: workspace_root().join("target/crosscheck"),
+        },
+    )
 }

@@ -375,3 +375,20 @@ fn byte_order_mark_is_accepted() {
     );
     assert!(desc.shapes.is_empty());
 }
+
+#[test]
+fn emitting_shapes_without_a_bsdf_reflect_nothing() {
+    // Mitsuba gives an emitter without a BSDF a black one; a plain shape gets diffuse 0.5.
+    let desc = ok(
+        "black_emitter.xml",
+        &wrap(
+            "<shape type=\"rectangle\"><emitter type=\"area\"><rgb name=\"radiance\" value=\"1\"/></emitter></shape>\n\
+             <shape type=\"sphere\"/>",
+        ),
+    );
+    let black = BsdfDesc::Diffuse {
+        reflectance: Vec3::ZERO,
+    };
+    assert_eq!(desc.bsdfs[desc.shapes[0].bsdf], black);
+    assert_eq!(desc.bsdfs[desc.shapes[1].bsdf], BsdfDesc::default_diffuse());
+}

@@ -29,6 +29,7 @@ pub(crate) struct BsdfTable<'a> {
     resolving: Vec<&'a str>,
     bsdfs: Vec<BsdfDesc>,
     default: Option<usize>,
+    black: Option<usize>,
 }
 
 impl<'a> BsdfTable<'a> {
@@ -42,6 +43,7 @@ impl<'a> BsdfTable<'a> {
             resolving: Vec::new(),
             bsdfs: Vec::new(),
             default: None,
+            black: None,
         }
     }
 
@@ -77,6 +79,17 @@ impl<'a> BsdfTable<'a> {
     pub fn default_bsdf(&mut self) -> usize {
         *self.default.get_or_insert_with(|| {
             self.bsdfs.push(BsdfDesc::default_diffuse());
+            self.bsdfs.len() - 1
+        })
+    }
+
+    /// The index of the black BSDF Mitsuba gives emitting shapes that name none, added on
+    /// first use.
+    pub fn black_bsdf(&mut self) -> usize {
+        *self.black.get_or_insert_with(|| {
+            self.bsdfs.push(BsdfDesc::Diffuse {
+                reflectance: glam::Vec3::ZERO,
+            });
             self.bsdfs.len() - 1
         })
     }

@@ -68,9 +68,11 @@ pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Resu
         plugin: node.plugin.clone(),
         id: node.id.clone(),
         geometry,
-        bsdf: match bsdf {
-            Some(index) => index,
-            None => bsdfs.default_bsdf(),
+        bsdf: match (bsdf, &emitter) {
+            (Some(index), _) => index,
+            // Mitsuba gives an emitter without a BSDF a black one: it emits but reflects nothing.
+            (None, Some(_)) => bsdfs.black_bsdf(),
+            (None, None) => bsdfs.default_bsdf(),
         },
         emitter,
     })

@@ -1,0 +1,242 @@
+//! `cargo xtask crosscheck`: renders scene files with Strata's reference integrator and with
+//! Mitsuba 3, and compares the two images block by block.
+//!
+//! Each renderer renders [`RENDERS`] times with different seeds. Per pixel, the variance of the
+//! mean of the renders is their sample variance over the number of renders; summing it over an
+//! 8 × 8 block gives the variance of the block mean with 64 · (RENDERS − 1) degrees of freedom. Each block and channel gets a z-score
+//! (Strata − Mitsuba) / √(var_S + var_M); it passes when |z| is below the two-sided threshold
+//! for α = 0.01 with Šidák correction over all blocks and channels. Needs `pip install mitsuba`.
+
+use render::image::Image;
+use render::metrics::{mean, relmse};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Block edge in pixels.
+const BLOCK: u32 = 8;
+/// Independent renders per renderer (seeds 1, 2, …).
+const RENDERS: u32 = 4;
+/// Family-wise significance level of the block test.
+const ALPHA: f64 = 0.01;
+
+/// Options of one crosscheck run.
+pub struct Options {
+    /// Scene files to compare.
+    pub scenes: Vec<PathBuf>,
+    /// Samples per pixel of each of the two renders per renderer.
+    pub spp: u32,
+    /// Where the images go.
+    pub out_dir: PathBuf,
+}
+
+/// One scene's outcome.
+struct Outcome {
+    scene: String,
+    blocks: usize,
+    failed: usize,
+    max_abs_z: f64,
+    relmse: f64,
+    mean_strata: f64,
+    mean_mitsuba: f64,
+}
+
+/// Runs the comparison and prints one line per scene; false if any scene failed.
+pub fn run(strata: &Path, options: &Options) -> Result<bool, String> {
+    std::fs::create_dir_all(&options.out_dir)
+        .map_err(|e| format!("cannot create {}: {e}", options.out_dir.display()))?;
+    println!(
+        "{:<16} {:>7} {:>7} {:>8} {:>10} {:>10} {:>10}",
+        "scene", "blocks", "failed", "max|z|", "relmse", "mean S", "mean M"
+    );
+    let mut all_passed = true;
+    for scene in &options.scenes {
+        let outcome = compare(strata, scene, options)?;
+        all_passed &= outcome.failed == 0;
+        println!(
+            "{:<16} {:>7} {:>7} {:>8.2} {:>10.2e} {:>10.5} {:>10.5}",
+            outcome.scene,
+            outcome.blocks,
+            outcome.failed,
+            outcome.max_abs_z,
+            outcome.relmse,
+            outcome.mean_strata,
+            outcome.mean_mitsuba
+        );
+    }
+    Ok(all_passed)
+}
+
+fn compare(strata: &Path, scene: &Path, options: &Options) -> Result<Outcome, String> {
+    let name = scene
+        .file_stem()
+        .map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
+    let spp = options.spp.to_string();
+    let mut strata_images = Vec::new();
+    let mut mitsuba_images = Vec::new();
+    for seed in 1..=RENDERS {
+        let out = options.out_dir.join(format!("{name}-strata-{seed}.exr"));
+        let seed_arg = seed.to_string();
+        let args = [
+            "render",
+            path_str(scene)?,
+            "--out",
+            path_str(&out)?,
+            "--integrator",
+            "reference",
+            "--spp",
+            &spp,
+            "--seed",
+            &seed_arg,
+        ];
+        run_command(Command::new(strata).args(args))?;
+        strata_images.push(read(&out)?);
+
+        let out = options.out_dir.join(format!("{name}-mitsuba-{seed}.exr"));
+        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_render.py");
+        run_command(Command::new("python3").args([
+            path_str(&script)?,
+            path_str(scene)?,
+            path_str(&out)?,
+            &spp,
+            &seed_arg,
+        ]))?;
+        mitsuba_images.push(read(&out)?);
+    }
+    let strata_mean = average(&strata_images);
+    let mitsuba_mean = average(&mitsuba_images);
+    if (strata_mean.width, strata_mean.height) != (mitsuba_mean.width, mitsuba_mean.height) {
+        return Err(format!("{name}: the two renderers' images differ in size"));
+    }
+    let (blocks, failed, max_abs_z) = block_test(&strata_images, &mitsuba_images);
+    Ok(Outcome {
+        scene: name,
+        blocks,
+        failed,
+        max_abs_z,
+        relmse: relmse(&strata_mean, &mitsuba_mean).map_err(|e| e.to_string())?,
+        mean_strata: mean(&strata_mean),
+        mean_mitsuba: mean(&mitsuba_mean),
+    })
+}
+
+/// (block-channel tests, failures, largest |z|).
+fn block_test(strata: &[Image], mitsuba: &[Image]) -> (usize, usize, f64) {
+    let (w, h) = (strata[0].width, strata[0].height);
+    let blocks_x = w.div_ceil(BLOCK);
+    let blocks_y = h.div_ceil(BLOCK);
+    let tests = (blocks_x * blocks_y * 3) as usize;
+    let alpha_each = 1.0 - (1.0 - ALPHA).powf(1.0 / tests as f64);
+    let threshold = normal_quantile(1.0 - alpha_each / 2.0);
+    let (mut failed, mut max_abs_z) = (0, 0.0_f64);
+    for by in 0..blocks_y {
+        for bx in 0..blocks_x {
+            for channel in 0..3 {
+                let (ms, vs) = block_stats(strata, bx, by, channel);
+                let (mm, vm) = block_stats(mitsuba, bx, by, channel);
+                let variance = vs + vm;
+                let z = if variance > 0.0 {
+                    (ms - mm) / variance.sqrt()
+                } else if (ms - mm).abs() < 1e-6 {
+                    0.0
+                } else {
+                    f64::INFINITY
+                };
+                max_abs_z = max_abs_z.max(z.abs());
+                if z.abs() > threshold {
+                    failed += 1;
+                }
+            }
+        }
+    }
+    (tests, failed, max_abs_z)
+}
+
+/// Mean of the renders over a block and the variance of that mean.
+fn block_stats(images: &[Image], bx: u32, by: u32, channel: usize) -> (f64, f64) {
+    let (w, h) = (images[0].width, images[0].height);
+    let k = images.len() as f64;
+    let (mut sum, mut variance_sum, mut n) = (0.0, 0.0, 0.0);
+    for y in by * BLOCK..((by + 1) * BLOCK).min(h) {
+        for x in bx * BLOCK..((bx + 1) * BLOCK).min(w) {
+            let values = images.iter().map(|i| f64::from(i.pixel(x, y)[channel]));
+            let mean = values.clone().sum::<f64>() / k;
+            let sample_variance = values.map(|v| (v - mean) * (v - mean)).sum::<f64>() / (k - 1.0);
+            sum += mean;
+            variance_sum += sample_variance / k;
+            n += 1.0;
+        }
+    }
+    (sum / n, variance_sum / (n * n))
+}
+
+/// Standard normal quantile by bisection on erfc (accurate to 1e-9, plenty for a threshold).
+fn normal_quantile(p: f64) -> f64 {
+    let (mut lo, mut hi) = (-40.0_f64, 40.0_f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if normal_cdf(mid) < p {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Φ(x) through the complementary error function (Numerical Recipes' erfc, |error| < 1.2e-7).
+fn normal_cdf(x: f64) -> f64 {
+    let z = -x / std::f64::consts::SQRT_2;
+    let t = 1.0 / (1.0 + 0.5 * z.abs());
+    let poly = -z * z - 1.265_512_23
+        + t * (1.000_023_68
+            + t * (0.374_091_96
+                + t * (0.096_784_18
+                    + t * (-0.186_288_06
+                        + t * (0.278_868_07
+                            + t * (-1.135_203_98
+                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
+    let erfc = t * poly.exp();
+    0.5 * if z >= 0.0 { erfc } else { 2.0 - erfc }
+}
+
+fn average(images: &[Image]) -> Image {
+    let k = images.len() as f32;
+    Image::from_fn(images[0].width, images[0].height, |x, y| {
+        images.iter().map(|i| i.pixel(x, y)).sum::<glam::Vec3>() / k
+    })
+}
+
+fn read(path: &Path) -> Result<Image, String> {
+    Image::read_exr(path).map_err(|e| e.to_string())
+}
+
+fn path_str(path: &Path) -> Result<&str, String> {
+    path.to_str()
+        .ok_or_else(|| format!("{} is not UTF-8", path.display()))
+}
+
+fn run_command(command: &mut Command) -> Result<(), String> {
+    let output = command
+        .output()
+        .map_err(|e| format!("cannot run {command:?}: {e}"))?;
+    if output.status.success() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{command:?} failed: {}",
+            String::from_utf8_lossy(&output.stderr)
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn normal_quantiles_match_tables() {
+        // Φ⁻¹(0.975) = 1.959964, Φ⁻¹(0.995) = 2.575829 (standard tables).
+        assert!((normal_quantile(0.975) - 1.959_964).abs() < 1e-5);
+        assert!((normal_quantile(0.995) - 2.575_829).abs() < 1e-5);
+    }
+}
