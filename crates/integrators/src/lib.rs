@@ -3,6 +3,7 @@
 //! as a switch.
 
 mod counters;
+mod delta_lights;
 mod light_choice;
 pub mod path;
 pub mod reference;

@@ -1,11 +1,15 @@
 //! The variance-reduction path tracer: every technique of the lecture as a switch in
 //! [`PathSettings`], each switch unbiased on its own and in any combination.
 //!
+//! Without light sampling, point lights (which no sampled direction can hit) are still connected
+//! by one shadow ray each, as in the reference integrator.
+//!
 //! Sampler dimensions per vertex, in this order and only for the techniques switched on (so a
 //! configuration consumes a fixed, documented sequence): light choice (1D) and light point (2D)
 //! with next event estimation; BSDF lobe (1D) and BSDF direction (2D) always; roulette (1D) with
 //! Russian roulette.
 
+use crate::delta_lights::delta_lights;
 use crate::light_choice::choose_light;
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{LightSelectionMode, Mis, PathSettings};
@@ -110,6 +114,8 @@ impl PathIntegrator {
                     radiance += throughput
                         * self.direct_light(world, &surface, wo, u_choice, u_point, counters);
                 }
+            } else if !surface.bsdf.is_delta() {
+                radiance += throughput * delta_lights(world, &surface, wo, counters);
             }
 
             let u_lobe = sampler.next_1d();

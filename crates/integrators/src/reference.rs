@@ -6,10 +6,11 @@
 //! (points) cannot be hit by a random ray, so each vertex connects to them explicitly: the only
 //! unbiased way to see them. Every other configuration is tested against this one.
 
+use crate::delta_lights::delta_lights;
 use crate::uniform_direction::sample_uniform_direction;
 use crate::{RayCounters, World};
 use geometry::Ray;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use sampling::Sampler;
 
 /// Paths with an unbounded `max_depth` stop after this many vertices: the reference has no
@@ -61,17 +62,7 @@ pub fn radiance(
         let ng = surface.hit.ng;
         let wo = surface.frame.to_local(-ray.dir);
 
-        for &light_index in world.delta_lights() {
-            let light = &world.lights()[light_index as usize];
-            let Some(s) = light.sample_li(p, Vec2::ZERO) else {
-                continue;
-            };
-            let wi = surface.frame.to_local(s.wi);
-            let f = surface.bsdf.eval(wo, wi);
-            if f != Vec3::ZERO && world.unoccluded(p, ng, s.p_light, s.n_light, counters) {
-                radiance += throughput * f * wi.z.abs() * s.radiance / s.pdf_solid_angle;
-            }
-        }
+        radiance += throughput * delta_lights(world, &surface, wo, counters);
 
         let (wi, weight) = if surface.bsdf.is_delta() {
             let Some(s) = surface.bsdf.sample(wo, u_lobe, u_dir) else {

@@ -33,6 +33,7 @@ pub mod image;
 pub mod metrics;
 pub mod progress;
 mod render_command;
+pub mod session;
 pub mod stats;
 pub mod technique;
 pub mod tiles;

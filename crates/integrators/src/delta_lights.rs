@@ -1,0 +1,35 @@
+//! Connecting a shading point to every delta light: the only unbiased way to see point lights
+//! without light selection, since no sampled direction can hit them.
+
+use crate::{RayCounters, SurfaceHit, World};
+use glam::{Vec2, Vec3};
+
+/// Light from every delta light at `surface`, each by its one shadow ray. Without light sampling
+/// this is the only way to see a point light: no sampled direction can hit it.
+pub(crate) fn delta_lights(
+    world: &World,
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+    counters: &mut RayCounters,
+) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for &index in world.delta_lights() {
+        let Some(s) = world.lights()[index as usize].sample_li(surface.hit.p, Vec2::ZERO) else {
+            continue;
+        };
+        let wi = surface.frame.to_local(s.wi);
+        let f = surface.bsdf.eval(wo, wi);
+        if f != Vec3::ZERO
+            && world.unoccluded(
+                surface.hit.p,
+                surface.hit.ng,
+                s.p_light,
+                s.n_light,
+                counters,
+            )
+        {
+            sum += f * wi.z.abs() * s.radiance / s.pdf_solid_angle;
+        }
+    }
+    sum
+}
