@@ -1,22 +1,21 @@
 //! Chi-square goodness of fit of every non-delta `Bsdf::sample` against its `pdf_solid_angle`,
-//! with a fixed seed per case (printed on failure). The family-wise significance level is 0.01
-//! over all [`CASES`] cases of this file, Šidák-corrected to a per-case level as in Mitsuba's
-//! `chi2.py`, so a correct sampler fails somewhere with probability 0.01.
+//! with the shared `sampling::chi2` harness and a fixed seed per case (the harness report, printed
+//! on failure, replays it). The family-wise significance level is 0.01 over all [`CASES`] cases of
+//! this file, Šidák-corrected by the harness to a per-case level as in Mitsuba's `chi2.py`, so a
+//! correct sampler fails somewhere with probability 0.01.
 //!
 //! The sphere is binned about the +y axis (directions are rotated so that +y becomes the bins'
 //! pole): lobes centred in the xz-plane of incidence then sit on the bins' equator, where the
-//! bins are narrow in both angles, and the horizon z = 0 falls on bin edges (φ = 0 and π).
+//! bins are narrow in both angles, and the horizon z = 0 falls on bin edges (φ = 0 and ±π).
 
-#[path = "support/chi2.rs"]
-mod chi2;
 #[path = "support/fixtures.rs"]
 mod fixtures;
 
-use chi2::{Chi2Config, Chi2Domain, Chi2Outcome, chi2_test};
 use fixtures::{ALPHAS, INCIDENCE_DEGREES, gold, incidence, rough_conductor};
 use glam::{Vec2, Vec3};
 use materials::{Bsdf, ComplexIor, Diffuse, MicrofacetKind, TwoSided};
 use sampling::Rng;
+use sampling::chi2::{Chi2Config, Chi2Domain, Chi2Outcome, chi2_test};
 
 /// Number of (BSDF, wo) cases tested for goodness of fit in this file.
 const CASES: u32 = 25;
@@ -24,9 +23,23 @@ const CASES: u32 = 25;
 /// Family-wise significance level over all cases.
 const FAMILY_SIGNIFICANCE: f64 = 0.01;
 
-/// Per-case significance level: Šidák's 1 − (1 − α)^(1/cases).
-fn case_significance() -> f64 {
-    1.0 - (1.0 - FAMILY_SIGNIFICANCE).powf(1.0 / f64::from(CASES))
+/// Samples per case.
+const SAMPLE_COUNT: u32 = 1_000_000;
+
+/// Rows in cos θ (and half the columns in φ) of the binning grid: 128 × 256 bins, narrow enough
+/// (about 0.016 rad) to resolve the α = 0.05 lobes.
+const RESOLUTION: u32 = 128;
+
+/// The harness settings of one case: its seed, α = [`FAMILY_SIGNIFICANCE`] shared by [`CASES`] tests.
+fn config(seed: u32) -> Chi2Config {
+    Chi2Config {
+        seed,
+        sample_count: SAMPLE_COUNT,
+        resolution: RESOLUTION,
+        alpha: FAMILY_SIGNIFICANCE,
+        test_count: CASES,
+        ..Chi2Config::default()
+    }
 }
 
 /// Rotation taking the local +y axis to the binning pole +z: (x, y, z) ↦ (x, −z, y).
@@ -40,13 +53,7 @@ fn from_binning_frame(v: Vec3) -> Vec3 {
 }
 
 /// Runs the chi-square test of `bsdf` at `wo`; returns the outcome for the caller to judge.
-fn run(bsdf: &Bsdf, wo: Vec3, seed: u32, sample_count: usize) -> Chi2Outcome {
-    let config = Chi2Config {
-        seed,
-        sample_count,
-        significance: case_significance(),
-        ..Chi2Config::default()
-    };
+fn run(bsdf: &Bsdf, wo: Vec3, seed: u32) -> Chi2Outcome {
     chi2_test(
         Chi2Domain::Sphere,
         |rng: &mut Rng| {
@@ -56,24 +63,23 @@ fn run(bsdf: &Bsdf, wo: Vec3, seed: u32, sample_count: usize) -> Chi2Outcome {
                 .map(|s| to_binning_frame(s.wi))
         },
         |v| bsdf.pdf_solid_angle(wo, from_binning_frame(v)),
-        &config,
+        &config(seed),
     )
 }
 
 /// Asserts that `bsdf` sampled at `wo` matches its pdf, and that the fraction of successful
-/// samples matches the pdf's integral (within 5 standard deviations plus quadrature error).
+/// samples matches the pdf's integral (within 5 standard deviations plus quadrature error). The
+/// harness tests the absorbed samples too, as one cell among many; this check is sharper.
 fn assert_fits(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u32) {
-    let n = 1_000_000;
-    let outcome = run(bsdf, wo, seed, n);
-    if let Some(failure) = &outcome.failure {
-        panic!("{name}, wo {wo}: {failure}");
-    }
+    let outcome = run(bsdf, wo, seed);
+    assert!(outcome.passed, "{name}, wo {wo}: {outcome}");
+    let n = f64::from(outcome.sample_count);
+    let valid_fraction = 1.0 - outcome.absorbed_samples as f64 / n;
     let p = outcome.pdf_integral.min(1.0);
-    let sigma = (p * (1.0 - p) / n as f64).sqrt();
+    let sigma = (p * (1.0 - p) / n).sqrt();
     assert!(
-        (outcome.valid_fraction - outcome.pdf_integral).abs() < 5.0 * sigma + 2e-3,
-        "{name}, wo {wo}, seed {seed}: {} of samples valid but the pdf integrates to {}",
-        outcome.valid_fraction,
+        (valid_fraction - outcome.pdf_integral).abs() < 5.0 * sigma + 2e-3,
+        "{name}, wo {wo}: {valid_fraction} of samples valid but the pdf integrates to {}\n{outcome}",
         outcome.pdf_integral
     );
 }
@@ -160,11 +166,7 @@ fn harness_rejects_mismatched_pdfs() {
     let wo = incidence(45.0);
     let sampled = rough_conductor(MicrofacetKind::Ggx, 0.3, ComplexIor::PERFECT_MIRROR);
     let claimed = rough_conductor(MicrofacetKind::Ggx, 0.32, ComplexIor::PERFECT_MIRROR);
-    let config = Chi2Config {
-        seed: 7,
-        significance: case_significance(),
-        ..Chi2Config::default()
-    };
+    let config = config(7);
     let outcome = chi2_test(
         Chi2Domain::Sphere,
         |rng: &mut Rng| {
@@ -175,10 +177,10 @@ fn harness_rejects_mismatched_pdfs() {
         &config,
     );
     assert!(
-        outcome.failure.is_some() && outcome.p_value < config.significance,
-        "alpha 0.30 vs 0.32 not detected: {outcome:?}"
+        !outcome.passed && outcome.p_value < config.alpha_corrected(),
+        "alpha 0.30 vs 0.32 not detected: {outcome}"
     );
-    assert!(outcome.statistic > outcome.dof as f64, "{outcome:?}");
+    assert!(outcome.statistic > f64::from(outcome.dof), "{outcome}");
 
     // Samples where the claimed pdf is zero must fail outright.
     let diffuse = Bsdf::from(Diffuse::new(Vec3::ONE));
@@ -194,7 +196,7 @@ fn harness_rejects_mismatched_pdfs() {
         &config,
     );
     assert!(
-        outcome.failure.is_some(),
-        "samples below the horizon not detected"
+        !outcome.passed && outcome.zero_pdf_samples > 0,
+        "samples below the horizon not detected: {outcome}"
     );
 }
