@@ -13,6 +13,7 @@
 
 use render::image::Image;
 use render::metrics::{mean, relmse};
+use sampling::ztest::{sidak_alpha, two_sided_threshold};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -132,8 +133,7 @@ fn block_test(strata: &[Image], mitsuba: &[Image]) -> (usize, usize, f64) {
     let blocks_x = w.div_ceil(BLOCK);
     let blocks_y = h.div_ceil(BLOCK);
     let tests = (blocks_x * blocks_y * 3) as usize;
-    let alpha_each = 1.0 - (1.0 - ALPHA).powf(1.0 / tests as f64);
-    let threshold = normal_quantile(1.0 - alpha_each / 2.0);
+    let threshold = two_sided_threshold(sidak_alpha(ALPHA, tests));
     let strata_blocks = block_statistics(strata, blocks_x, blocks_y);
     let mitsuba_blocks = block_statistics(mitsuba, blocks_x, blocks_y);
     let strata_effect = design_effect(&strata_blocks);
@@ -232,36 +232,6 @@ fn block_stats(images: &[Image], bx: u32, by: u32, channel: usize) -> BlockStati
     }
 }
 
-/// Standard normal quantile by bisection on erfc (accurate to 1e-9, plenty for a threshold).
-fn normal_quantile(p: f64) -> f64 {
-    let (mut lo, mut hi) = (-40.0_f64, 40.0_f64);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if normal_cdf(mid) < p {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
-/// Φ(x) through the complementary error function (Numerical Recipes' erfc, |error| < 1.2e-7).
-fn normal_cdf(x: f64) -> f64 {
-    let z = -x / std::f64::consts::SQRT_2;
-    let t = 1.0 / (1.0 + 0.5 * z.abs());
-    let poly = -z * z - 1.265_512_23
-        + t * (1.000_023_68
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_203_98
-                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    let erfc = t * poly.exp();
-    0.5 * if z >= 0.0 { erfc } else { 2.0 - erfc }
-}
-
 fn average(images: &[Image]) -> Image {
     let k = images.len() as f32;
     Image::from_fn(images[0].width, images[0].height, |x, y| {
@@ -289,17 +259,5 @@ fn run_command(command: &mut Command) -> Result<(), String> {
             "{command:?} failed: {}",
             String::from_utf8_lossy(&output.stderr)
         ))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn normal_quantiles_match_tables() {
-        // Φ⁻¹(0.975) = 1.959964, Φ⁻¹(0.995) = 2.575829 (standard tables).
-        assert!((normal_quantile(0.975) - 1.959_964).abs() < 1e-5);
-        assert!((normal_quantile(0.995) - 2.575_829).abs() < 1e-5);
     }
 }

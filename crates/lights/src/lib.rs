@@ -10,6 +10,7 @@
 //! geometric normal points to; a point light has intensity in W/sr; a constant environment emits
 //! the same radiance from every direction.
 
+mod area_sample;
 mod environment;
 mod light;
 mod mesh_area;

@@ -1,6 +1,6 @@
 //! Area emitters on triangle meshes (Mitsuba's `area` emitter attached to a mesh shape).
 
-use crate::pdf_area_to_solid_angle;
+use crate::area_sample::{area_pdf_towards, area_sample_towards};
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Vec2, Vec3};
 use sampling::distribution::CdfTable;
@@ -61,45 +61,13 @@ impl MeshAreaLight {
         let b = sample_uniform_triangle(Vec2::new(u_remapped, u.y));
         let p_light = p0 * b.x + p1 * b.y + p2 * b.z;
         let n_light = (p1 - p0).cross(p2 - p0).normalize_or_zero();
-        let to_light = p_light - p;
-        let distance = to_light.length();
-        if distance.is_nan() || distance <= 0.0 {
-            return None;
-        }
-        let wi = to_light / distance;
-        let cos_at_light = -n_light.dot(wi);
-        if cos_at_light <= 0.0 {
-            return None;
-        }
-        let pdf_solid_angle =
-            pdf_area_to_solid_angle(1.0 / self.total_area, distance, cos_at_light);
-        if !(pdf_solid_angle.is_finite() && pdf_solid_angle > 0.0) {
-            return None;
-        }
-        Some(LightSample {
-            radiance: self.radiance,
-            wi,
-            distance,
-            pdf_solid_angle,
-            p_light,
-            n_light,
-            is_delta: false,
-        })
+        area_sample_towards(p, p_light, n_light, 1.0 / self.total_area, self.radiance)
     }
 
     /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`
     /// (geometric normal `n_light`) of this mesh.
     pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
-        let to_light = p_light - p;
-        let distance = to_light.length();
-        if distance.is_nan() || distance <= 0.0 {
-            return 0.0;
-        }
-        let cos_at_light = -n_light.dot(to_light / distance);
-        if cos_at_light <= 0.0 {
-            return 0.0;
-        }
-        pdf_area_to_solid_angle(1.0 / self.total_area, distance, cos_at_light)
+        area_pdf_towards(p, p_light, n_light, 1.0 / self.total_area)
     }
 
     /// Emitted power (W, mean over channels): π · area · radiance for a one-sided Lambertian emitter.

@@ -1,7 +1,7 @@
 //! Area emitters on spheres (Mitsuba's `area` emitter attached to a `sphere` shape), sampled by
 //! the solid angle of the cap visible from the shading point.
 
-use crate::pdf_area_to_solid_angle;
+use crate::area_sample::{area_pdf_towards, area_sample_towards};
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Vec2, Vec3};
 use sampling::Frame;
@@ -104,45 +104,14 @@ impl SphereAreaLight {
         let outward = sample_uniform_sphere(u);
         let p_light = self.center + self.radius * outward;
         let n_light = if self.flip_normals { -outward } else { outward };
-        let to_light = p_light - p;
-        let distance = to_light.length();
-        if distance.is_nan() || distance <= 0.0 {
-            return None;
-        }
-        let wi = to_light / distance;
-        let cos_at_light = -n_light.dot(wi);
-        if cos_at_light <= 0.0 {
-            return None;
-        }
-        let pdf_solid_angle = pdf_area_to_solid_angle(self.pdf_area(), distance, cos_at_light);
-        if !pdf_solid_angle.is_finite() {
-            return None;
-        }
-        Some(LightSample {
-            radiance: self.radiance,
-            wi,
-            distance,
-            pdf_solid_angle,
-            p_light,
-            n_light,
-            is_delta: false,
-        })
+        area_sample_towards(p, p_light, n_light, self.pdf_area(), self.radiance)
     }
 
     /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`
     /// with geometric normal `n_light` on the sphere.
     pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
         if self.samples_by_area(p) {
-            let to_light = p_light - p;
-            let distance = to_light.length();
-            if distance.is_nan() || distance <= 0.0 {
-                return 0.0;
-            }
-            let cos_at_light = -n_light.dot(to_light / distance);
-            if cos_at_light <= 0.0 {
-                return 0.0;
-            }
-            return pdf_area_to_solid_angle(self.pdf_area(), distance, cos_at_light);
+            return area_pdf_towards(p, p_light, n_light, self.pdf_area());
         }
         if self.flip_normals {
             return 0.0;

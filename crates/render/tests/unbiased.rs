@@ -22,6 +22,7 @@ use render::film::Film;
 use render::session::{film_filter, render_scene};
 use render::technique::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
+use sampling::ztest::{sidak_alpha, two_sided_threshold};
 use scene::RenderScene;
 use std::path::Path;
 
@@ -67,45 +68,11 @@ fn render(
     output.film
 }
 
-/// Two-sided standard normal threshold for a per-test level, by bisection on the CDF.
-fn threshold(alpha_each: f64) -> f64 {
-    let cdf = |x: f64| 0.5 * libm_erfc(-x / std::f64::consts::SQRT_2);
-    let (mut lo, mut hi) = (0.0_f64, 40.0_f64);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if 1.0 - cdf(mid) > alpha_each / 2.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    hi
-}
-
-/// erfc by its continued-fraction-free Chebyshev fit (Numerical Recipes, |error| < 1.2e-7).
-fn libm_erfc(x: f64) -> f64 {
-    let z = x.abs();
-    let t = 1.0 / (1.0 + 0.5 * z);
-    let r = t
-        * (-z * z - 1.265_512_23
-            + t * (1.000_023_68
-                + t * (0.374_091_96
-                    + t * (0.096_784_18
-                        + t * (-0.186_288_06
-                            + t * (0.278_868_07
-                                + t * (-1.135_203_98
-                                    + t * (1.488_515_87
-                                        + t * (-0.822_152_23 + t * 0.170_872_77)))))))))
-            .exp();
-    if x >= 0.0 { r } else { 2.0 - r }
-}
-
 /// Fraction of block-channels passing, and the worst (|z|, block origin pixel, channel).
 fn z_test(config: &Film, reference: &Film) -> (f64, (f64, UVec2, usize)) {
     let blocks = SIZE / BLOCK;
     let tests = f64::from(blocks * blocks * 3);
-    let alpha_each = 1.0 - (1.0 - ALPHA).powf(1.0 / tests);
-    let limit = threshold(alpha_each);
+    let limit = two_sided_threshold(sidak_alpha(ALPHA, tests as usize));
     let (mut passed, mut worst) = (0.0, (0.0, UVec2::ZERO, 0));
     for by in 0..blocks {
         for bx in 0..blocks {

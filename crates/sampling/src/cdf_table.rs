@@ -1,7 +1,7 @@
 //! A discrete distribution sampled by inverting its cumulative distribution, which also hands
 //! back the leftover randomness of the uniform number it used.
 
-use crate::distribution::AliasTableError;
+use crate::distribution::{AliasTableError, validated_total};
 
 /// Index i chosen with probability wᵢ / Σⱼ wⱼ by binary search in the cumulative sums (O(log n)).
 ///
@@ -21,25 +21,7 @@ impl CdfTable {
     /// # Errors
     /// The same conditions as [`AliasTable::new`](crate::AliasTable::new).
     pub fn new(weights: &[f32]) -> Result<Self, AliasTableError> {
-        if weights.is_empty() {
-            return Err(AliasTableError::Empty);
-        }
-        if u32::try_from(weights.len()).is_err() {
-            return Err(AliasTableError::TooMany);
-        }
-        let mut total = 0.0_f64;
-        for (i, &w) in weights.iter().enumerate() {
-            if !w.is_finite() {
-                return Err(AliasTableError::NonFinite(i));
-            }
-            if w < 0.0 {
-                return Err(AliasTableError::Negative(i));
-            }
-            total += f64::from(w);
-        }
-        if total <= 0.0 {
-            return Err(AliasTableError::ZeroTotal);
-        }
+        let total = validated_total(weights)?;
         let pmf: Vec<f32> = weights
             .iter()
             .map(|&w| (f64::from(w) / total) as f32)

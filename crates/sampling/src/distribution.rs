@@ -33,6 +33,31 @@ impl fmt::Display for AliasTableError {
 
 impl std::error::Error for AliasTableError {}
 
+/// The sum of `weights` in f64 after checking they can define a distribution: not empty,
+/// addressable by `u32`, each finite and non-negative, not all zero.
+pub(crate) fn validated_total(weights: &[f32]) -> Result<f64, AliasTableError> {
+    if weights.is_empty() {
+        return Err(AliasTableError::Empty);
+    }
+    if u32::try_from(weights.len()).is_err() {
+        return Err(AliasTableError::TooMany);
+    }
+    let mut total = 0.0_f64;
+    for (i, &w) in weights.iter().enumerate() {
+        if !w.is_finite() {
+            return Err(AliasTableError::NonFinite(i));
+        }
+        if w < 0.0 {
+            return Err(AliasTableError::Negative(i));
+        }
+        total += f64::from(w);
+    }
+    if total <= 0.0 {
+        return Err(AliasTableError::ZeroTotal);
+    }
+    Ok(total)
+}
+
 /// One column of the table: keep its own index with probability `keep`, else take `alias`.
 #[derive(Clone, Copy, Debug)]
 struct Column {
@@ -57,26 +82,7 @@ impl AliasTable {
     /// [`AliasTableError`] if `weights` is empty, too long, or has a NaN, infinite or negative
     /// weight, or if every weight is zero.
     pub fn new(weights: &[f32]) -> Result<Self, AliasTableError> {
-        if weights.is_empty() {
-            return Err(AliasTableError::Empty);
-        }
-        if u32::try_from(weights.len()).is_err() {
-            return Err(AliasTableError::TooMany);
-        }
-        let mut total = 0.0_f64;
-        for (i, &w) in weights.iter().enumerate() {
-            if !w.is_finite() {
-                return Err(AliasTableError::NonFinite(i));
-            }
-            if w < 0.0 {
-                return Err(AliasTableError::Negative(i));
-            }
-            total += f64::from(w);
-        }
-        if total <= 0.0 {
-            return Err(AliasTableError::ZeroTotal);
-        }
-
+        let total = validated_total(weights)?;
         let n = weights.len();
         let pmf: Vec<f32> = weights
             .iter()

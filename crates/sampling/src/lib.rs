@@ -8,7 +8,8 @@
 //!   pdf and inverse.
 //! - [`distribution::AliasTable`], [`mis`] heuristics and [`reservoir::Reservoir`] for choosing between
 //!   lights, lobes and techniques.
-//! - [`chi2`]: the goodness-of-fit harness that tests every sampling routine against its pdf.
+//! - [`chi2`]: the goodness-of-fit harness that tests every sampling routine against its pdf, and
+//!   [`ztest`]: Šidák-corrected z-tests for comparing estimates.
 //!
 //! Depends only on `glam` and `rand_core`, so it can be used outside Strata.
 //!
@@ -43,6 +44,7 @@ pub mod reservoir;
 pub mod rng;
 pub mod sampler;
 pub mod warp;
+pub mod ztest;
 
 pub use distribution::AliasTable;
 pub use frame::Frame;

@@ -28,6 +28,8 @@
 //! ```
 
 mod gamma;
+
+pub(crate) use gamma::gamma_q;
 mod outcome;
 mod quadrature;
 
