@@ -3,11 +3,13 @@
 use super::report::SceneReport;
 use std::fmt::Write as _;
 
-/// Plot size in SVG user units (pixels).
+/// Plot width in SVG user units (pixels).
 const WIDTH: f64 = 480.0;
+/// Plot height in SVG user units (pixels).
 const HEIGHT: f64 = 320.0;
-/// Margin around the plot area, room for the axes' labels and the legend.
+/// Margin around the plot area, room for the axes' labels (pixels).
 const MARGIN: f64 = 48.0;
+/// Width of the legend right of the plot area (pixels).
 const LEGEND: f64 = 120.0;
 
 /// Line colours, cycled per configuration.

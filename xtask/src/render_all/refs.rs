@@ -13,19 +13,19 @@ use std::process::Command;
 /// Sampler seed of the references (render-all's configurations use other seeds).
 pub const REFERENCE_SEED: u32 = 1000;
 
-/// Samples per pixel of each scene's reference: 20 s of rendering on 2 threads, timed from 64 spp
-/// on a 2-core machine shared with other jobs (about half as long on idle cores).
+/// Samples per pixel of each scene's reference: about 20 s of rendering each on 2 threads (timed
+/// at half these counts: 9.4 to 10.3 s).
 const REFERENCE_SPP: &[(&str, u32)] = &[
-    ("cbox", 460),
-    ("cbox-glass", 512),
-    ("cbox-mesh", 400),
-    ("cbox-smalllight", 480),
-    ("furnace", 1024),
-    ("manylights", 1900),
-    ("pointlight", 2300),
-    ("softshadow", 1900),
-    ("thinlens", 2000),
-    ("veach-mis", 1024),
+    ("cbox", 920),
+    ("cbox-glass", 1024),
+    ("cbox-mesh", 800),
+    ("cbox-smalllight", 960),
+    ("furnace", 2048),
+    ("manylights", 3800),
+    ("pointlight", 4600),
+    ("softshadow", 3800),
+    ("thinlens", 4000),
+    ("veach-mis", 2048),
 ];
 
 /// Samples per pixel for a scene missing from the table.

@@ -100,12 +100,12 @@ fn csv(reports: &[SceneReport]) -> String {
     text
 }
 
-/// A number for the tables, `-` when missing or not finite.
+/// A number for the tables: `inf` when infinite (an exact image), `-` when missing or undefined.
 fn number(value: Option<f64>, digits: usize) -> String {
     match value {
         Some(v) if v.is_finite() => format!("{v:.digits$}"),
-        Some(_) => "inf".to_string(),
-        None => "-".to_string(),
+        Some(v) if v.is_infinite() => "inf".to_string(),
+        _ => "-".to_string(),
     }
 }
 
