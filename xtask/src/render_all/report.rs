@@ -176,3 +176,38 @@ fn html(reports: &[SceneReport]) -> String {
     page.push_str("</body></html>\n");
     page
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn measurement(configuration: &str, budget: f64, relmse: f64) -> Measurement {
+        Measurement {
+            configuration: configuration.to_string(),
+            budget,
+            spp: 1,
+            seconds: budget,
+            rmse: relmse.sqrt(),
+            relmse,
+        }
+    }
+
+    #[test]
+    fn efficiency_ratio_compares_the_largest_budgets() {
+        let report = SceneReport {
+            scene: "s".to_string(),
+            configurations: vec![REFERENCE.to_string(), "mis".to_string()],
+            auto_techniques: Vec::new(),
+            measurements: vec![
+                measurement(REFERENCE, 1.0, 0.5),
+                measurement(REFERENCE, 2.0, 0.25),
+                measurement("mis", 2.0, 0.05),
+                measurement("mis", 1.0, 10.0),
+            ],
+        };
+        assert_eq!(report.efficiency_ratio(REFERENCE), Some(1.0));
+        let ratio = report.efficiency_ratio("mis").expect("both rendered");
+        assert!((ratio - 5.0).abs() < 1e-12, "ratio {ratio}");
+        assert_eq!(report.efficiency_ratio("absent"), None);
+    }
+}
