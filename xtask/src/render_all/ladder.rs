@@ -50,7 +50,9 @@ impl SceneTransport {
 
 /// The ladder for a scene with `features`: reference → BSDF sampling only → NEE without MIS →
 /// MIS → (uniform and RIS light selection, with more than one light) → + roulette → +
-/// stratified → + blue noise, and `auto`. BSDF-only is left out when the scene has delta lights
+/// stratified → + blue noise, and `auto` (`auto_settings` of MIS with roulette, blue-noise
+/// sampler). Light selection and the later rungs build on MIS (on NEE where no light can be
+/// hit, on BSDF sampling where none can be sampled). BSDF-only is left out when the scene has delta lights
 /// (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be sampled; MIS
 /// when no light can be hit (it equals NEE there).
 pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Configuration> {
