@@ -1,28 +1,27 @@
 //! `cargo xtask <job>`: the project's automation, one subcommand per job.
 //!
-//! - `render-all`: the scene suite's error-against-time report (not built yet).
+//! - `refs [--scenes A,B]`: render and store each scene's high-sample reference image under
+//!   `scenes/refs/`.
+//! - `render-all [--quick] [--scenes A,B]`: every technique configuration of each scene at a
+//!   series of time budgets, measured against the stored references; report in `target/report/`.
 //! - `check`: the statistical checks (run through `cargo test` for now).
 //! - `crosscheck [--spp N] [SCENE.xml ...]`: Strata's reference integrator against Mitsuba 3,
 //!   block by block (needs `pip install mitsuba`; never run in CI).
 
 mod crosscheck;
+mod render_all;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-const USAGE: &str =
-    "usage: cargo xtask <render-all | check | crosscheck [--spp N] [SCENE.xml ...]>";
+const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check | \
+     crosscheck [--spp N] [SCENE.xml ...]>";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
-        Some("render-all") => {
-            println!(
-                "render-all: the error-against-time report is not built yet; \
-                 `strata render scenes/<scene>.xml --out image.exr` renders one scene"
-            );
-            Ok(true)
-        }
+        Some("refs") => render_all::refs(&workspace_root(), &args[1..]),
+        Some("render-all") => render_all::render_all(&workspace_root(), &args[1..]),
         Some("check") => {
             println!(
                 "check: the statistical checks run through `cargo test --release --workspace` for now"

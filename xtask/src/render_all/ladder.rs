@@ -1,0 +1,200 @@
+//! The configuration ladder of a scene: the reference integrator, then one technique added per
+//! rung, plus `auto`; rungs that cannot apply to the scene are left out.
+
+use integrators::reference::ReferenceSettings;
+use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+use render::technique::{RIS_CANDIDATES, Transport, auto_settings};
+use sampling::sampler::SamplerKind;
+use scene::SceneFeatures;
+
+/// Name of the reference integrator's configuration (the one others are compared with).
+pub const REFERENCE: &str = "reference";
+
+/// One rung: a named light transport and sampler.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Configuration {
+    /// Short name used in the CSV, file names and tables.
+    pub name: String,
+    /// The light transport.
+    pub transport: Transport,
+    /// The sampling pattern.
+    pub sampler: SamplerKind,
+}
+
+/// What the scene file fixes for every configuration.
+#[derive(Clone, Copy, Debug)]
+pub struct SceneTransport {
+    /// Longest path in vertices (None: unbounded).
+    pub max_depth: Option<u32>,
+    /// Whether emitters seen directly by the camera are hidden.
+    pub hide_emitters: bool,
+    /// The scene's Russian roulette start depth.
+    pub roulette: RussianRoulette,
+}
+
+impl SceneTransport {
+    /// The path tracer with MIS (power heuristic), NEE, power light selection, no roulette: the
+    /// preset the stored references are rendered with.
+    pub fn mis(&self) -> PathSettings {
+        PathSettings {
+            max_depth: self.max_depth,
+            hide_emitters: self.hide_emitters,
+            sample_lights: true,
+            sample_bsdf: true,
+            mis: Mis::Power,
+            light_selection: LightSelectionMode::Power,
+            russian_roulette: None,
+        }
+    }
+}
+
+/// The ladder for a scene with `features`: reference → BSDF sampling only → NEE without MIS →
+/// MIS → (uniform and RIS light selection, with more than one light) → + roulette → +
+/// stratified → + blue noise, and `auto` (`auto_settings` of MIS with roulette, blue-noise
+/// sampler). Light selection and the later rungs build on MIS (on NEE where no light can be
+/// hit, on BSDF sampling where none can be sampled). BSDF-only is left out when the scene has delta lights
+/// (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be sampled; MIS
+/// when no light can be hit (it equals NEE there).
+pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Configuration> {
+    let rung = |name: &str, settings: PathSettings, sampler| Configuration {
+        name: name.to_string(),
+        transport: Transport::Path(settings),
+        sampler,
+    };
+    let independent = SamplerKind::Independent;
+    let mis = transport.mis();
+    let mut rungs = vec![Configuration {
+        name: REFERENCE.to_string(),
+        transport: Transport::Reference(ReferenceSettings {
+            max_depth: transport.max_depth,
+            hide_emitters: transport.hide_emitters,
+        }),
+        sampler: independent,
+    }];
+    let no_nee = PathSettings {
+        sample_lights: false,
+        mis: Mis::Off,
+        ..mis
+    };
+    if features.light_count > 0 && !features.has_delta_lights {
+        rungs.push(rung("bsdf", no_nee, independent));
+    }
+    let can_sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
+    if can_sample_lights {
+        rungs.push(rung(
+            "nee",
+            PathSettings {
+                mis: Mis::Off,
+                ..mis
+            },
+            independent,
+        ));
+        if features.has_hittable_lights {
+            rungs.push(rung("mis", mis, independent));
+        }
+    }
+    let best = if can_sample_lights && features.has_hittable_lights {
+        mis
+    } else if can_sample_lights {
+        PathSettings {
+            mis: Mis::Off,
+            ..mis
+        }
+    } else {
+        no_nee
+    };
+    if can_sample_lights && features.light_count > 1 {
+        let uniform = LightSelectionMode::Uniform;
+        let ris = LightSelectionMode::Ris {
+            candidates: RIS_CANDIDATES,
+        };
+        for (name, light_selection) in [("uniform-lights", uniform), ("ris-lights", ris)] {
+            let settings = PathSettings {
+                light_selection,
+                ..best
+            };
+            rungs.push(rung(name, settings, independent));
+        }
+    }
+    let roulette = PathSettings {
+        russian_roulette: Some(transport.roulette),
+        ..best
+    };
+    rungs.push(rung("+roulette", roulette, independent));
+    rungs.push(rung("+stratified", roulette, SamplerKind::Stratified));
+    rungs.push(rung("+bluenoise", roulette, SamplerKind::BlueNoise));
+    let auto = PathSettings {
+        russian_roulette: Some(transport.roulette),
+        ..mis
+    };
+    rungs.push(rung(
+        "auto",
+        auto_settings(auto, features),
+        SamplerKind::BlueNoise,
+    ));
+    rungs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn transport() -> SceneTransport {
+        SceneTransport {
+            max_depth: Some(8),
+            hide_emitters: false,
+            roulette: RussianRoulette { start_depth: 5 },
+        }
+    }
+
+    fn features(light_count: usize, has_delta_lights: bool) -> SceneFeatures {
+        SceneFeatures {
+            light_count,
+            has_hittable_lights: !has_delta_lights,
+            has_delta_lights,
+            has_non_delta_bsdfs: true,
+            has_delta_bsdfs: false,
+            has_lens: false,
+        }
+    }
+
+    fn names(rungs: &[Configuration]) -> Vec<&str> {
+        rungs.iter().map(|c| c.name.as_str()).collect()
+    }
+
+    #[test]
+    fn light_selection_rungs_only_with_several_lights() {
+        let one = ladder(&transport(), &features(1, false));
+        assert_eq!(
+            names(&one),
+            [
+                "reference",
+                "bsdf",
+                "nee",
+                "mis",
+                "+roulette",
+                "+stratified",
+                "+bluenoise",
+                "auto"
+            ]
+        );
+        let many = ladder(&transport(), &features(4, false));
+        assert!(names(&many).contains(&"uniform-lights"));
+        assert!(names(&many).contains(&"ris-lights"));
+    }
+
+    #[test]
+    fn point_lights_drop_bsdf_only_and_mis() {
+        let rungs = ladder(&transport(), &features(1, true));
+        let names = names(&rungs);
+        assert!(!names.contains(&"bsdf") && !names.contains(&"mis"));
+        assert!(names.contains(&"nee"));
+        let Transport::Path(roulette) =
+            rungs[names.iter().position(|n| *n == "+roulette").unwrap()].transport
+        else {
+            panic!("+roulette is a path configuration");
+        };
+        assert_eq!(roulette.mis, Mis::Off);
+        assert!(roulette.russian_roulette.is_some());
+    }
+}

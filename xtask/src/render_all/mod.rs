@@ -1,0 +1,94 @@
+//! `cargo xtask refs` and `cargo xtask render-all`: stored high-sample references of the scene
+//! suite, and every configuration of the technique ladder rendered at a series of time budgets
+//! and measured against them.
+
+mod ladder;
+mod plot;
+mod refs;
+mod report;
+mod run;
+
+pub use refs::refs;
+pub use run::render_all;
+
+use integrators::RussianRoulette;
+use ladder::SceneTransport;
+use scene::{IntegratorKind, RenderScene};
+use std::path::{Path, PathBuf};
+
+/// A scene of the suite, loaded and built.
+struct SuiteScene {
+    /// File stem, e.g. `cbox`.
+    name: String,
+    /// The built scene.
+    scene: RenderScene,
+}
+
+impl SuiteScene {
+    /// Loads and builds `path`.
+    fn load(path: &Path) -> Result<Self, String> {
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .ok_or_else(|| format!("{}: no file name", path.display()))?;
+        let scene = scene::load(path, &[]).map_err(|e| e.to_string())?;
+        Ok(Self { name, scene })
+    }
+
+    /// What the scene file fixes for every configuration (depth as `strata render` reads it).
+    fn transport(&self) -> SceneTransport {
+        let integrator = &self.scene.desc.integrator;
+        let max_depth = if integrator.kind == IntegratorKind::Direct {
+            Some(2)
+        } else {
+            u32::try_from(integrator.max_depth).ok()
+        };
+        SceneTransport {
+            max_depth,
+            hide_emitters: integrator.hide_emitters,
+            roulette: RussianRoulette {
+                start_depth: integrator.rr_depth.max(1),
+            },
+        }
+    }
+}
+
+/// The scene files under `scenes/`, sorted, limited to `only` (file stems) when it is not empty.
+fn scene_files(root: &Path, only: &[String]) -> Result<Vec<PathBuf>, String> {
+    let dir = root.join("scenes");
+    let entries = std::fs::read_dir(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .collect();
+    files.sort();
+    if only.is_empty() {
+        return Ok(files);
+    }
+    let stem = |p: &PathBuf| p.file_stem().map(|s| s.to_string_lossy().into_owned());
+    for name in only {
+        if !files
+            .iter()
+            .any(|p| stem(p).as_deref() == Some(name.as_str()))
+        {
+            return Err(format!("no scene scenes/{name}.xml"));
+        }
+    }
+    files.retain(|p| stem(p).is_some_and(|s| only.contains(&s)));
+    Ok(files)
+}
+
+/// The value of `--scenes A,B,...` split at commas.
+fn parse_scene_list(value: Option<&String>) -> Result<Vec<String>, String> {
+    let value = value.ok_or("--scenes takes a comma-separated list of scene names")?;
+    Ok(value
+        .split(',')
+        .filter(|s| !s.is_empty())
+        .map(|s| s.trim_end_matches(".xml").to_string())
+        .collect())
+}
+
+/// Where a scene's stored reference image lives.
+fn reference_path(root: &Path, name: &str) -> PathBuf {
+    root.join("scenes/refs").join(format!("{name}.exr"))
+}
