@@ -33,10 +33,16 @@ impl Light {
     /// unit direction `w` (zero behind a one-sided emitter, and for lights without a surface).
     #[inline]
     pub fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
-        match self {
-            Light::Mesh(l) => l.radiance_towards(ng, w),
-            Light::Sphere(l) => l.radiance_towards(ng, w),
-            Light::Point(_) | Light::Environment(_) => Vec3::ZERO,
+        let radiance = match self {
+            Light::Mesh(l) => l.radiance(),
+            Light::Sphere(l) => l.radiance,
+            Light::Point(_) | Light::Environment(_) => return Vec3::ZERO,
+        };
+        // Area emitters are one-sided: they emit on the side their geometric normal points to.
+        if ng.dot(w) > 0.0 {
+            radiance
+        } else {
+            Vec3::ZERO
         }
     }
 

@@ -42,17 +42,6 @@ impl MeshAreaLight {
         self.total_area
     }
 
-    /// Radiance leaving a point with geometric normal `ng` towards the unit direction `w`:
-    /// the emitter's radiance on the front side, zero behind it.
-    #[inline]
-    pub fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
-        if ng.dot(w) > 0.0 {
-            self.radiance
-        } else {
-            Vec3::ZERO
-        }
-    }
-
     /// A point uniform by area on the mesh, seen from `p`; `None` when it faces away or
     /// coincides with `p`.
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {

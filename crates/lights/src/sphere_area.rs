@@ -29,16 +29,6 @@ pub struct SphereAreaLight {
 }
 
 impl SphereAreaLight {
-    /// Radiance leaving a point with geometric normal `ng` (as the shape reports it) towards `w`.
-    #[inline]
-    pub fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
-        if ng.dot(w) > 0.0 {
-            self.radiance
-        } else {
-            Vec3::ZERO
-        }
-    }
-
     /// From outside: a direction uniform in the cone of the visible cap (pbrt-v4's method with a
     /// series expansion for small cones). From inside or on the sphere: a point uniform by area.
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
