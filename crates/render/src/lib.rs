@@ -37,6 +37,3 @@ pub mod session;
 pub mod stats;
 pub mod technique;
 pub mod tiles;
-
-#[cfg(test)]
-mod test_rng;

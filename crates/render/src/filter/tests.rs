@@ -4,7 +4,7 @@
 use glam::{UVec2, Vec2};
 
 use super::Filter;
-use crate::test_rng::TestRng;
+use sampling::Rng;
 
 /// The filters under test: Mitsuba's three defaults plus non-default parameters.
 fn filters() -> Vec<(&'static str, Filter)> {
@@ -133,10 +133,10 @@ fn chi2_critical(dof: usize, z_alpha: f64) -> f64 {
 }
 
 /// Chi-square statistic and its critical value at significance 0.001 for 2D offsets drawn by
-/// `sample` (from a `TestRng` seeded with `seed`) against the bin probabilities of `filter`,
+/// `sample` (from a `sampling::Rng` seeded with `seed`) against the bin probabilities of `filter`,
 /// integrated from `eval_1d` on a 24×24 grid over the support. Bins expecting fewer than 5
 /// samples are pooled into one.
-fn chi_square(filter: &Filter, sample: impl Fn(Vec2) -> Vec2, seed: u64) -> (f64, f64) {
+fn chi_square(filter: &Filter, sample: impl Fn(Vec2) -> Vec2, seed: u32) -> (f64, f64) {
     const BINS: usize = 24;
     const Z_ALPHA_0_001: f64 = 3.090;
     let r = f64::from(filter.radius());
@@ -147,7 +147,7 @@ fn chi_square(filter: &Filter, sample: impl Fn(Vec2) -> Vec2, seed: u64) -> (f64
         .collect();
 
     let mut counts = vec![0u64; BINS * BINS];
-    let mut rng = TestRng::new(seed);
+    let mut rng = Rng::new(seed);
     let bin = |x: f32| (((f64::from(x) + r) / (2.0 * r) * BINS as f64) as usize).min(BINS - 1);
     for _ in 0..CHI2_SAMPLES {
         let p = sample(Vec2::new(rng.next_f32(), rng.next_f32()));
@@ -182,11 +182,11 @@ const CHI2_SAMPLES: usize = 200_000;
 #[test]
 fn sampled_offsets_follow_the_normalised_filter() {
     for (seed, (name, filter)) in filters().into_iter().enumerate() {
-        let (chi2, critical) = chi_square(&filter, |u| filter.sample(u), seed as u64);
+        let (chi2, critical) = chi_square(&filter, |u| filter.sample(u), seed as u32);
         assert!(
             chi2 < critical,
             "{name}: chi2 = {chi2:.1} exceeds the 0.001 critical value {critical:.1} \
-             (replay: TestRng seed {seed}, {CHI2_SAMPLES} samples)"
+             (replay: sampling::Rng seed {seed}, {CHI2_SAMPLES} samples)"
         );
     }
 }

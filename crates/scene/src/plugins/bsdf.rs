@@ -135,12 +135,7 @@ impl<'a> BsdfTable<'a> {
                 BsdfDesc::Conductor {
                     eta,
                     k,
-                    specular_reflectance: rgb(
-                        &mut params,
-                        "specular_reflectance",
-                        ColorKind::Reflectance,
-                        1.0,
-                    )?,
+                    specular_reflectance: specular_reflectance(&mut params)?,
                 }
             }
             "roughconductor" => {
@@ -150,12 +145,7 @@ impl<'a> BsdfTable<'a> {
                     alpha: alpha(&mut params)?,
                     eta,
                     k,
-                    specular_reflectance: rgb(
-                        &mut params,
-                        "specular_reflectance",
-                        ColorKind::Reflectance,
-                        1.0,
-                    )?,
+                    specular_reflectance: specular_reflectance(&mut params)?,
                 }
             }
             "dielectric" => {
@@ -169,12 +159,7 @@ impl<'a> BsdfTable<'a> {
                 BsdfDesc::Dielectric {
                     int_ior: int_ior as f32,
                     ext_ior: ext_ior as f32,
-                    specular_reflectance: rgb(
-                        &mut params,
-                        "specular_reflectance",
-                        ColorKind::Reflectance,
-                        1.0,
-                    )?,
+                    specular_reflectance: specular_reflectance(&mut params)?,
                     specular_transmittance: rgb(
                         &mut params,
                         "specular_transmittance",
@@ -330,6 +315,11 @@ fn alpha(params: &mut Params) -> Result<f32> {
 }
 
 /// An index of refraction given as a number or as one of Mitsuba's material names.
+/// Mitsuba's `specular_reflectance` multiplier (default 1).
+fn specular_reflectance(params: &mut Params) -> Result<glam::Vec3> {
+    rgb(params, "specular_reflectance", ColorKind::Reflectance, 1.0)
+}
+
 fn ior(params: &mut Params, name: &'static str, default: f64) -> Result<f64> {
     let loc = params.loc_of(name);
     let value = match params.string(name) {
