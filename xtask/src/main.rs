@@ -4,17 +4,19 @@
 //!   `scenes/refs/`.
 //! - `render-all [--quick] [--scenes A,B]`: every technique configuration of each scene at a
 //!   series of time budgets, measured against the stored references; report in `target/report/`.
-//! - `check`: the statistical checks (run through `cargo test` for now).
+//! - `check [--quick]`: the statistical and stiff-case checks (the workspace's tests, with the
+//!   slow ones that `cargo test` skips unless `--quick`), one pass/fail line each with its figures.
 //! - `crosscheck [--spp N] [SCENE.xml ...]`: Strata's reference integrator against Mitsuba 3,
 //!   block by block (needs `pip install mitsuba`; never run in CI).
 
+mod check;
 mod crosscheck;
 mod render_all;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check | \
+const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check [--quick] | \
      crosscheck [--spp N] [SCENE.xml ...]>";
 
 fn main() -> ExitCode {
@@ -22,12 +24,7 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("refs") => render_all::refs(&workspace_root(), &args[1..]),
         Some("render-all") => render_all::render_all(&workspace_root(), &args[1..]),
-        Some("check") => {
-            println!(
-                "check: the statistical checks run through `cargo test --release --workspace` for now"
-            );
-            Ok(true)
-        }
+        Some("check") => check::check(&workspace_root(), &args[1..]),
         Some("crosscheck") => crosscheck(&args[1..]),
         _ => Err(USAGE.to_string()),
     };

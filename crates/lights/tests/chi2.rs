@@ -61,6 +61,7 @@ fn assert_fits(name: &str, light: &Light, p: Vec3, pdf: impl Fn(Vec3) -> f32, co
         pdf,
         config,
     );
+    println!("figure: {name}: {}", outcome.summary());
     assert!(outcome.passed, "{name}: {outcome}");
 }
 
@@ -394,6 +395,7 @@ fn assert_selects(name: &str, selector: &LightSelector, expected: &[f64], seed: 
         |i| f64::from(selector.pmf(i)),
         &config(seed, 1_000_000, 1), // The resolution is unused by chi2_discrete.
     );
+    println!("figure: {name}: {}", outcome.summary());
     assert!(outcome.passed, "{name}: {outcome}");
 }
 

@@ -72,6 +72,7 @@ fn run(bsdf: &Bsdf, wo: Vec3, seed: u32) -> Chi2Outcome {
 /// harness tests the absorbed samples too, as one cell among many; this check is sharper.
 fn assert_fits(name: &str, bsdf: &Bsdf, wo: Vec3, seed: u32) {
     let outcome = run(bsdf, wo, seed);
+    println!("figure: {name}, wo {wo}: {}", outcome.summary());
     assert!(outcome.passed, "{name}, wo {wo}: {outcome}");
     let n = f64::from(outcome.sample_count);
     let valid_fraction = 1.0 - outcome.absorbed_samples as f64 / n;

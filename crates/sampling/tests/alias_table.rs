@@ -67,6 +67,7 @@ fn chi_square_against_the_weights() {
             ..Chi2Config::default()
         },
     );
+    println!("figure: alias table: {}", outcome.summary());
     assert!(outcome.passed, "{outcome}");
 }
 

@@ -123,7 +123,7 @@ fn blue_noise_error_has_less_low_frequency_energy_than_independent_error() {
         })
         .count() as f64
         / (SIDE * SIDE - 1) as f64;
-    println!("white noise: low-frequency share {white_share:.4}");
+    println!("figure: white noise: low-frequency share {white_share:.4}");
     // (samples per pixel, largest allowed ratio of blue-noise to independent low-frequency share)
     for (spp, ratio) in [(1, 0.5), (4, 0.75), (16, 0.75)] {
         let (independent, independent_variance) =
@@ -131,7 +131,7 @@ fn blue_noise_error_has_less_low_frequency_energy_than_independent_error() {
         let (stratified, stratified_variance) = low_frequency_share(SamplerKind::Stratified, spp);
         let (blue, blue_variance) = low_frequency_share(SamplerKind::BlueNoise, spp);
         println!(
-            "{spp} spp: low-frequency share of error power: independent {independent:.4}, \
+            "figure: {spp} spp: low-frequency share of error power: independent {independent:.4}, \
              stratified {stratified:.4}, blue noise {blue:.4} ({:.1}x less than independent); \
              error variance: independent {independent_variance:.3e}, stratified {stratified_variance:.3e}, \
              blue noise {blue_variance:.3e}",

@@ -116,6 +116,7 @@ fn chi_square_for_every_direction_warp() {
             &warp.pdf,
             &chi2_config(seed as u32),
         );
+        println!("figure: {}: {}", warp.name, outcome.summary());
         assert!(outcome.passed, "{}: {outcome}", warp.name);
     }
 }

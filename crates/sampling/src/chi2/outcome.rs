@@ -73,6 +73,20 @@ impl Chi2Outcome {
     pub fn report(&self) -> String {
         self.to_string()
     }
+
+    /// One line for check summaries: the verdict, p-value against the corrected level, the
+    /// pdf's integral and the sample count and seed that replay it.
+    pub fn summary(&self) -> String {
+        format!(
+            "chi-square {}: p = {:.3} (level {:.1e}), pdf integral {:.4}, {} samples, seed {}",
+            if self.passed { "passed" } else { "FAILED" },
+            self.p_value,
+            self.alpha_corrected,
+            self.pdf_integral,
+            self.sample_count,
+            self.seed
+        )
+    }
 }
 
 impl fmt::Display for Chi2Outcome {

@@ -1,0 +1,273 @@
+//! Shared set-up of the render-level statistical tests: loading scenes at test resolution,
+//! rendering in-process, the technique configurations, and per-block z-tests between films.
+
+#![allow(dead_code)] // Each test file uses part of this module.
+
+use glam::{UVec2, Vec3};
+use integrators::reference::ReferenceSettings;
+use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+use render::driver::{RenderBudget, RenderOptions};
+use render::film::Film;
+use render::session::{film_filter, render_scene};
+use render::technique::{RenderPlan, Transport};
+use sampling::sampler::SamplerKind;
+use sampling::ztest::{sidak_alpha, two_sided_threshold};
+use scene::RenderScene;
+use std::path::{Path, PathBuf};
+
+/// The scene suite's folder.
+pub fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
+}
+
+/// Loads `path` with `overrides` of its `<default>` values and the film set to `width × height`.
+pub fn load_file(path: &Path, overrides: &[(&str, &str)], width: u32, height: u32) -> RenderScene {
+    let overrides: Vec<(String, String)> = overrides
+        .iter()
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect();
+    let mut desc = scene::parse_file(path, &overrides).unwrap_or_else(|e| panic!("{e}"));
+    desc.film.width = width;
+    desc.film.height = height;
+    scene::build(desc).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Writes `xml` to `dir/name.xml` and loads it at `size × size`.
+pub fn load_xml(dir: &Path, name: &str, xml: &str, size: u32) -> RenderScene {
+    let path = dir.join(format!("{name}.xml"));
+    std::fs::write(&path, xml).expect("temporary scene file");
+    load_file(&path, &[], size, size)
+}
+
+/// The scene file's depth as `strata render` reads it.
+pub fn max_depth(scene: &RenderScene) -> Option<u32> {
+    u32::try_from(scene.desc.integrator.max_depth).ok()
+}
+
+/// The reference integrator at the scene's depth.
+pub fn reference(scene: &RenderScene) -> Transport {
+    Transport::Reference(ReferenceSettings {
+        max_depth: max_depth(scene),
+        hide_emitters: scene.desc.integrator.hide_emitters,
+    })
+}
+
+/// A render of `scene` at `spp` with `seed`; panics (naming `label`) if any sample was NaN or
+/// infinite.
+pub fn render(
+    scene: &RenderScene,
+    transport: Transport,
+    sampler: SamplerKind,
+    spp: u32,
+    seed: u32,
+    label: &str,
+) -> Film {
+    let plan = RenderPlan {
+        transport,
+        sampler,
+        seed,
+        budget: RenderBudget::spp(spp),
+        sampler_spp: spp,
+    };
+    let filter = film_filter(scene.desc.film.filter).expect("valid filter");
+    let (output, _) =
+        render_scene(scene, &plan, &filter, &RenderOptions::quiet()).expect("renders");
+    assert_eq!(
+        (output.non_finite.nan, output.non_finite.inf),
+        (0, 0),
+        "{label}: NaN and infinite samples ({spp} spp, seed {seed})"
+    );
+    output.film
+}
+
+/// One technique configuration of the path integrator.
+pub struct Configuration {
+    /// What it is called in failure messages and figures.
+    pub label: &'static str,
+    /// The integrator's switches.
+    pub settings: PathSettings,
+    /// The sampler.
+    pub sampler: SamplerKind,
+}
+
+/// MIS with the power heuristic and power-proportional light selection, no roulette.
+pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
+    PathSettings {
+        max_depth,
+        hide_emitters,
+        sample_lights: true,
+        sample_bsdf: true,
+        mis: Mis::Power,
+        light_selection: LightSelectionMode::Power,
+        russian_roulette: None,
+    }
+}
+
+/// Every switch of the path integrator turned on its own against `base` (MIS, power heuristic,
+/// power-proportional selection, independent sampler): BSDF-only, light-only, uniform directions,
+/// balance heuristic, uniform and RIS selection, roulette, stratified and blue-noise samplers.
+pub fn configurations(base: PathSettings) -> Vec<Configuration> {
+    let independent = |label, settings| Configuration {
+        label,
+        settings,
+        sampler: SamplerKind::Independent,
+    };
+    vec![
+        independent(
+            "bsdf-only",
+            PathSettings {
+                sample_lights: false,
+                mis: Mis::Off,
+                ..base
+            },
+        ),
+        independent(
+            "light-only (nee, no mis)",
+            PathSettings {
+                mis: Mis::Off,
+                ..base
+            },
+        ),
+        independent(
+            "nee uniform directions",
+            PathSettings {
+                sample_bsdf: false,
+                mis: Mis::Off,
+                ..base
+            },
+        ),
+        independent(
+            "mis balance",
+            PathSettings {
+                mis: Mis::Balance,
+                ..base
+            },
+        ),
+        independent("mis power", base),
+        independent(
+            "mis power uniform selection",
+            PathSettings {
+                light_selection: LightSelectionMode::Uniform,
+                ..base
+            },
+        ),
+        independent(
+            "ris 8",
+            PathSettings {
+                light_selection: LightSelectionMode::Ris { candidates: 8 },
+                ..base
+            },
+        ),
+        independent(
+            "roulette from 2",
+            PathSettings {
+                russian_roulette: Some(RussianRoulette { start_depth: 2 }),
+                ..base
+            },
+        ),
+        Configuration {
+            label: "stratified",
+            settings: base,
+            sampler: SamplerKind::Stratified,
+        },
+        Configuration {
+            label: "blue noise",
+            settings: base,
+            sampler: SamplerKind::BlueNoise,
+        },
+    ]
+}
+
+/// The result of a per-block z-test between two films.
+#[derive(Clone, Copy, Debug)]
+pub struct ZTest {
+    /// Fraction of block-channels whose |z| is below the threshold.
+    pub pass_fraction: f64,
+    /// The largest |z|.
+    pub worst_z: f64,
+    /// The top-left pixel of the block with the largest |z|.
+    pub worst_block: UVec2,
+    /// Its channel (0 red, 1 green, 2 blue).
+    pub worst_channel: usize,
+    /// The Šidák-corrected two-sided threshold on |z|.
+    pub threshold: f64,
+}
+
+impl std::fmt::Display for ZTest {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:.2}% of block-channels pass |z| < {:.2}; worst |z| {:.1} at the block from pixel {} channel {}",
+            100.0 * self.pass_fraction,
+            self.threshold,
+            self.worst_z,
+            self.worst_block,
+            self.worst_channel
+        )
+    }
+}
+
+/// Per `block × block` pixels and channel, z = (Σ mean_a − Σ mean_b) / √(Σ var_a + Σ var_b),
+/// with each film's unbiased per-pixel variance of the mean (pixels are independent) and a floor
+/// for `f32` rounding (1e-5 relative: a path's value goes through dozens of `f32` operations). Blocks rather than pixels because heavy-tailed estimates
+/// (a rare hit on a small light) make a block's mean closer to normal. The threshold is two-sided
+/// for a family-wise `alpha` with Šidák correction over all block-channels. `b` may be `None`
+/// with `expected` the exact per-pixel value instead.
+pub fn z_test(a: &Film, b: Option<&Film>, expected: Vec3, block: u32, alpha: f64) -> ZTest {
+    let blocks = UVec2::new(a.width() / block, a.height() / block);
+    let tests = (blocks.x * blocks.y * 3) as usize;
+    let threshold = two_sided_threshold(sidak_alpha(alpha, tests));
+    let mut result = ZTest {
+        pass_fraction: 0.0,
+        worst_z: 0.0,
+        worst_block: UVec2::ZERO,
+        worst_channel: 0,
+        threshold,
+    };
+    let mut passed = 0usize;
+    for by in 0..blocks.y {
+        for bx in 0..blocks.x {
+            let origin = UVec2::new(bx, by) * block;
+            for c in 0..3 {
+                let (mut difference, mut variance, mut magnitude) = (0.0, 0.0, 0.0_f64);
+                for dy in 0..block {
+                    for dx in 0..block {
+                        let pixel = origin + UVec2::new(dx, dy);
+                        let pa = a.pixel(pixel);
+                        let (mean_b, var_b) = match b {
+                            Some(b) => (
+                                b.pixel(pixel).mean()[c],
+                                b.pixel(pixel).variance_of_mean()[c],
+                            ),
+                            None => (expected[c], 0.0),
+                        };
+                        difference += f64::from(pa.mean()[c]) - f64::from(mean_b);
+                        variance += f64::from(pa.variance_of_mean()[c]) + f64::from(var_b);
+                        magnitude = magnitude.max(f64::from(mean_b).abs());
+                    }
+                }
+                let rounding = 1e-5 * magnitude * f64::from(block * block);
+                let z = difference.abs() / (variance + rounding * rounding).sqrt().max(1e-30);
+                if z <= threshold {
+                    passed += 1;
+                }
+                if z > result.worst_z {
+                    (result.worst_z, result.worst_block, result.worst_channel) = (z, origin, c);
+                }
+            }
+        }
+    }
+    result.pass_fraction = passed as f64 / tests as f64;
+    result
+}
+
+/// The mean of every pixel and channel of `film`.
+pub fn film_mean(film: &Film) -> f64 {
+    let mut sum = 0.0;
+    for y in 0..film.height() {
+        for x in 0..film.width() {
+            sum += film.pixel(UVec2::new(x, y)).mean().as_dvec3().element_sum();
+        }
+    }
+    sum / f64::from(3 * film.width() * film.height())
+}
