@@ -27,9 +27,11 @@ pub struct RenderScene {
     pub desc: SceneDesc,
 }
 
-/// Builds the runtime scene from `desc`. Errors name the scene file and the shape or BSDF that
-/// cannot be built.
-pub fn build(desc: SceneDesc) -> Result<RenderScene, LoadError> {
+/// Builds the runtime scene from `desc`, in camera-relative world space (see [`crate::rebase`]:
+/// the returned `desc` has every position translated by minus the camera's). Errors name the
+/// scene file and the shape or BSDF that cannot be built.
+pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
+    crate::rebase::camera_relative(&mut desc);
     let error = |element: String, message: String| LoadError {
         file: desc.source.clone(),
         line: 0,

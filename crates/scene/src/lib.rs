@@ -49,6 +49,7 @@ mod loader;
 mod mesh;
 mod params;
 mod plugins;
+mod rebase;
 mod xml;
 
 use std::path::Path;

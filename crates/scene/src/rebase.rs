@@ -1,0 +1,77 @@
+//! Camera-relative world space: the scene is translated so that the camera sits at the origin
+//! before anything is built from it.
+//!
+//! Radiance does not change under a translation of the whole scene, but single-precision
+//! arithmetic does: 1e5 units from the origin, `f32` positions are 0.008 apart, and every bound
+//! on intersection and offset error grows with the coordinates. Measured from the camera, the
+//! coordinates of everything the camera sees well are as small as the scene allows, so a scene
+//! far from the origin renders like the same scene at the origin.
+
+use crate::desc::{EmitterDesc, Geometry, SceneDesc};
+use glam::{Mat4, Vec3};
+
+/// Translates every position of `desc` (mesh vertices, sphere centres, point lights and the
+/// sensor) by minus the sensor's position.
+pub(crate) fn camera_relative(desc: &mut SceneDesc) {
+    let offset = desc.sensor.to_world.w_axis.truncate();
+    if offset == Vec3::ZERO || !offset.is_finite() {
+        return;
+    }
+    desc.sensor.to_world = Mat4::from_translation(-offset) * desc.sensor.to_world;
+    desc.sensor.to_world.w_axis = glam::Vec4::W;
+    for shape in &mut desc.shapes {
+        match &mut shape.geometry {
+            Geometry::Mesh(mesh) => mesh.positions.iter_mut().for_each(|p| *p -= offset),
+            Geometry::Sphere(sphere) => sphere.center -= offset,
+        }
+    }
+    for emitter in &mut desc.emitters {
+        if let EmitterDesc::Point { position, .. } = emitter {
+            *position -= offset;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn everything_moves_with_the_camera_and_directions_do_not() {
+        let xml = r#"<scene version="3.0.0"><integrator type="path"/>
+            <sensor type="perspective"><transform name="to_world">
+                <rotate y="1" angle="30"/><translate x="1e5" y="-2" z="3"/></transform></sensor>
+            <shape type="sphere"><point name="center" value="1e5, 0, 3"/></shape>
+            <shape type="rectangle"><transform name="to_world">
+                <translate x="1e5" y="-2" z="3"/></transform></shape>
+            <emitter type="point"><point name="position" value="1e5, -2, 4"/></emitter>
+        </scene>"#;
+        let path = std::env::temp_dir().join(format!("strata-rebase-{}.xml", std::process::id()));
+        std::fs::write(&path, xml).expect("temporary scene file");
+        let mut desc = crate::parse_file(&path, &[]).expect("a valid scene");
+        let _ = std::fs::remove_file(&path);
+        let rotation = desc.sensor.to_world.x_axis;
+        camera_relative(&mut desc);
+        assert_eq!(desc.sensor.to_world.w_axis, glam::Vec4::W);
+        assert_eq!(
+            desc.sensor.to_world.x_axis, rotation,
+            "directions are unchanged"
+        );
+        let Geometry::Sphere(sphere) = &desc.shapes[0].geometry else {
+            panic!("a sphere")
+        };
+        assert_eq!(sphere.center, Vec3::new(0.0, 2.0, 0.0));
+        let Geometry::Mesh(mesh) = &desc.shapes[1].geometry else {
+            panic!("a mesh")
+        };
+        assert!(
+            mesh.positions
+                .iter()
+                .all(|p| p.z == 0.0 && p.x.abs() == 1.0 && p.y.abs() == 1.0)
+        );
+        let EmitterDesc::Point { position, .. } = desc.emitters[0] else {
+            panic!("a point light")
+        };
+        assert_eq!(position, Vec3::Z);
+    }
+}
