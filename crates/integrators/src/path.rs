@@ -21,6 +21,21 @@ use lights::{LightSelection, LightSelector};
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
 
+/// A sampled continuation of the walk.
+#[derive(Clone, Copy, Debug)]
+struct NextDirection {
+    /// The direction, local shading frame, unit length.
+    wi: Vec3,
+    /// Throughput factor f·|cos θi| / pdf (RGB, dimensionless).
+    weight: Vec3,
+    /// Density per steradian of `wi` (for a delta lobe: the probability of choosing the lobe).
+    pdf_solid_angle: f32,
+    /// Whether `wi` came from a delta lobe.
+    is_delta: bool,
+    /// Relative index of refraction crossed (1 for reflection).
+    eta: f32,
+}
+
 /// The path tracer configured for one world: the settings and the light selection table.
 #[derive(Clone, Debug)]
 pub struct PathIntegrator {
@@ -69,6 +84,9 @@ impl PathIntegrator {
         let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
         let mut radiance = Vec3::ZERO;
         let mut throughput = Vec3::ONE;
+        // Product of η² over the refractions so far: refraction scales radiance by 1/η², which
+        // roulette must not mistake for absorption (pbrt-v4's `etaScale`, Mitsuba's `eta`).
+        let mut eta_scale = 1.0_f32;
         let mut ray = camera_ray;
         let mut previous = PreviousVertex {
             p: ray.origin,
@@ -120,16 +138,15 @@ impl PathIntegrator {
 
             let u_lobe = sampler.next_1d();
             let u_dir = sampler.next_2d();
-            let Some((wi, weight, pdf_dir, delta)) =
-                self.next_direction(&surface, wo, u_lobe, u_dir)
-            else {
+            let Some(next) = self.next_direction(&surface, wo, u_lobe, u_dir) else {
                 break;
             };
-            throughput *= weight;
+            throughput *= next.weight;
+            eta_scale *= next.eta * next.eta;
             if let Some(roulette) = settings.russian_roulette {
                 let u_survive = sampler.next_1d();
                 if depth >= roulette.start_depth {
-                    let survival = throughput.max_element().clamp(0.0, 1.0);
+                    let survival = (throughput.max_element() * eta_scale).clamp(0.0, 1.0);
                     if u_survive >= survival {
                         break;
                     }
@@ -141,10 +158,14 @@ impl PathIntegrator {
             }
             previous = PreviousVertex {
                 p: surface.hit.p,
-                pdf_dir,
-                delta,
+                pdf_dir: next.pdf_solid_angle,
+                delta: next.is_delta,
             };
-            ray = Ray::spawn(surface.hit.p, surface.hit.ng, surface.frame.to_world(wi));
+            ray = Ray::spawn(
+                surface.hit.p,
+                surface.hit.ng,
+                surface.frame.to_world(next.wi),
+            );
         }
         radiance
     }
@@ -197,27 +218,34 @@ impl PathIntegrator {
         chosen.f_cos * sample.radiance * (chosen.weight * mis_weight)
     }
 
-    /// The next direction: (wi local, throughput factor f·|cos|/pdf, pdf per steradian, delta).
+    /// The next direction of the walk: by the BSDF's sampling routine or uniformly.
     fn next_direction(
         &self,
         surface: &SurfaceHit<'_>,
         wo: Vec3,
         u_lobe: f32,
         u_dir: Vec2,
-    ) -> Option<(Vec3, Vec3, f32, bool)> {
+    ) -> Option<NextDirection> {
         let bsdf = surface.bsdf;
         if self.settings.sample_bsdf || bsdf.is_delta() {
             let s = bsdf.sample(wo, u_lobe, u_dir)?;
-            Some((
-                s.wi,
-                s.f * s.wi.z.abs() / s.pdf_solid_angle,
-                s.pdf_solid_angle,
-                s.is_delta,
-            ))
+            Some(NextDirection {
+                wi: s.wi,
+                weight: s.f * s.wi.z.abs() / s.pdf_solid_angle,
+                pdf_solid_angle: s.pdf_solid_angle,
+                is_delta: s.is_delta,
+                eta: s.eta,
+            })
         } else {
-            let (wi, pdf) = sample_uniform_direction(bsdf, wo, u_dir);
+            let (wi, pdf_solid_angle) = sample_uniform_direction(bsdf, wo, u_dir);
             let f = bsdf.eval(wo, wi);
-            Some((wi, f * wi.z.abs() / pdf, pdf, false))
+            Some(NextDirection {
+                wi,
+                weight: f * wi.z.abs() / pdf_solid_angle,
+                pdf_solid_angle,
+                is_delta: false,
+                eta: 1.0,
+            })
         }
     }
 

@@ -28,7 +28,14 @@ pub enum LightSelectionMode {
     },
 }
 
-/// Russian roulette on the indirect part of the path.
+/// Russian roulette on the indirect part of the path: after each sampled bounce from
+/// `start_depth` on, the path survives with probability clamp(max(r, g, b) of throughput × η²),
+/// and a survivor's throughput is divided by it. The throughput rather than the albedo, because
+/// it is what the rest of the path is multiplied by: a path that already carries little
+/// contributes little whatever it meets next. η² is the product over the refractions so far,
+/// so the 1/η² radiance scaling of entering glass is not mistaken for absorption (as in pbrt-v4
+/// and Mitsuba 3). Emission and next event estimation at the vertex are added before the
+/// decision, so they are never lost.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RussianRoulette {
     /// First path vertex (1 = the camera ray's hit) after which paths may be terminated.
