@@ -16,9 +16,9 @@
 mod common;
 
 use common::{
-    Configuration, configurations, film_mean, load_file, mis_power, render, scenes_dir, z_test,
+    Configuration, Target, configurations, film_mean, load_file, mis_power, render, scenes_dir,
+    z_test,
 };
-use glam::Vec3;
 use integrators::Mis;
 use render::technique::Transport;
 use sampling::sampler::SamplerKind;
@@ -125,7 +125,7 @@ fn check_scene(name: &str, budget: Budget) {
                 }
             }
             _ => {
-                let outcome = z_test(&film, Some(&reference), Vec3::ZERO, budget.block, ALPHA);
+                let outcome = z_test(&film, Target::Film(&reference), budget.block, ALPHA);
                 println!("figure: {name} / {label} vs {oracle_name}: {outcome}");
                 if outcome.pass_fraction < REQUIRED_PASS_FRACTION {
                     failures.push(format!(
@@ -145,7 +145,7 @@ fn check_scene(name: &str, budget: Budget) {
         ["bsdf-only", "light-only (nee, no mis)"].as_slice()
     };
     for other in others {
-        let outcome = z_test(film(other), Some(mis), Vec3::ZERO, budget.block, ALPHA);
+        let outcome = z_test(film(other), Target::Film(mis), budget.block, ALPHA);
         println!("figure: {name} / {other} vs mis power: {outcome}");
         if outcome.pass_fraction < REQUIRED_PASS_FRACTION {
             failures.push(format!(

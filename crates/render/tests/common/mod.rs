@@ -207,13 +207,20 @@ impl std::fmt::Display for ZTest {
     }
 }
 
+/// What a film is z-tested against.
+pub enum Target<'a> {
+    /// Another film, with its own variance.
+    Film(&'a Film),
+    /// The exact expected value of each pixel (no variance).
+    Exact(&'a dyn Fn(UVec2) -> Vec3),
+}
+
 /// Per `block × block` pixels and channel, z = (Σ mean_a − Σ mean_b) / √(Σ var_a + Σ var_b),
 /// with each film's unbiased per-pixel variance of the mean (pixels are independent) and a floor
 /// for `f32` rounding (1e-5 relative: a path's value goes through dozens of `f32` operations). Blocks rather than pixels because heavy-tailed estimates
 /// (a rare hit on a small light) make a block's mean closer to normal. The threshold is two-sided
-/// for a family-wise `alpha` with Šidák correction over all block-channels. `b` may be `None`
-/// with `expected` the exact per-pixel value instead.
-pub fn z_test(a: &Film, b: Option<&Film>, expected: Vec3, block: u32, alpha: f64) -> ZTest {
+/// for a family-wise `alpha` with Šidák correction over all block-channels.
+pub fn z_test(a: &Film, b: Target<'_>, block: u32, alpha: f64) -> ZTest {
     let blocks = UVec2::new(a.width() / block, a.height() / block);
     let tests = (blocks.x * blocks.y * 3) as usize;
     let threshold = two_sided_threshold(sidak_alpha(alpha, tests));
@@ -234,12 +241,12 @@ pub fn z_test(a: &Film, b: Option<&Film>, expected: Vec3, block: u32, alpha: f64
                     for dx in 0..block {
                         let pixel = origin + UVec2::new(dx, dy);
                         let pa = a.pixel(pixel);
-                        let (mean_b, var_b) = match b {
-                            Some(b) => (
+                        let (mean_b, var_b) = match &b {
+                            Target::Film(b) => (
                                 b.pixel(pixel).mean()[c],
                                 b.pixel(pixel).variance_of_mean()[c],
                             ),
-                            None => (expected[c], 0.0),
+                            Target::Exact(value) => (value(pixel)[c], 0.0),
                         };
                         difference += f64::from(pa.mean()[c]) - f64::from(mean_b);
                         variance += f64::from(pa.variance_of_mean()[c]) + f64::from(var_b);
