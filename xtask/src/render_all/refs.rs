@@ -1,7 +1,14 @@
-//! `cargo xtask refs`: renders each scene's reference image with the MIS preset at a fixed high
-//! sample count and stores it, with a note of how it was made, under `scenes/refs/`.
+//! `cargo xtask refs`: renders each scene's reference image at a fixed high sample count and
+//! stores it, with a note of how it was made, under `scenes/refs/`.
+//!
+//! The references use MIS with the balance heuristic, which no configuration of render-all's
+//! ladder uses (its MIS rungs use the power heuristic): an error shared by a configuration and
+//! the image it is measured against would go unseen, so no configuration is measured against an
+//! image made by itself. That MIS converges to the reference integrator's image is checked by
+//! the unbiasedness tests.
 
 use super::{SuiteScene, parse_scene_list, reference_path, scene_files};
+use integrators::{Mis, PathSettings};
 use render::atomic_write::write_bytes_atomically;
 use render::driver::{RenderBudget, RenderOptions};
 use render::session::{film_filter, render_scene};
@@ -13,19 +20,20 @@ use std::process::Command;
 /// Sampler seed of the references (render-all's configurations use other seeds).
 pub const REFERENCE_SEED: u32 = 1000;
 
-/// Samples per pixel of each scene's reference: about 20 s of rendering each on 2 threads (timed
-/// at half these counts: 9.4 to 10.3 s).
+/// Samples per pixel of each scene's reference: about 80 s of rendering each on 2 threads, so
+/// that its own noise is a small part of the error measured at render-all's largest budget
+/// (2 s, so at most 1/40 of the reference's samples).
 const REFERENCE_SPP: &[(&str, u32)] = &[
-    ("cbox", 920),
-    ("cbox-glass", 1024),
-    ("cbox-mesh", 800),
-    ("cbox-smalllight", 960),
+    ("cbox", 3680),
+    ("cbox-glass", 4096),
+    ("cbox-mesh", 3200),
+    ("cbox-smalllight", 3840),
     ("furnace", 2048),
-    ("manylights", 3800),
-    ("pointlight", 4600),
-    ("softshadow", 3800),
-    ("thinlens", 4000),
-    ("veach-mis", 2048),
+    ("manylights", 15200),
+    ("pointlight", 18400),
+    ("softshadow", 15200),
+    ("thinlens", 16000),
+    ("veach-mis", 8192),
 ];
 
 /// Samples per pixel for a scene missing from the table.
@@ -59,7 +67,10 @@ pub fn refs(root: &Path, args: &[String]) -> Result<bool, String> {
                 .find(|(name, _)| *name == suite.name)
                 .map_or(DEFAULT_SPP, |&(_, spp)| spp)
         });
-        let settings = suite.transport().mis();
+        let settings = PathSettings {
+            mis: Mis::Balance,
+            ..suite.transport().mis()
+        };
         let plan = RenderPlan {
             transport: Transport::Path(settings),
             sampler: SamplerKind::Independent,
