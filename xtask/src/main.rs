@@ -6,17 +6,20 @@
 //!   series of time budgets, measured against the stored references; report in `target/report/`.
 //! - `check [--quick]`: the statistical and stiff-case checks (the workspace's tests, with the
 //!   slow ones that `cargo test` skips unless `--quick`), one pass/fail line each with its figures.
+//! - `gains`: what each technique buys on the scene built to show it, one pass/fail line per
+//!   claim of the path integrator's issue (part of the full `check`).
 //! - `crosscheck [--spp N] [SCENE.xml ...]`: Strata's reference integrator against Mitsuba 3,
 //!   block by block (needs `pip install mitsuba`; never run in CI).
 
 mod check;
 mod crosscheck;
+mod gains;
 mod render_all;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check [--quick] | \
+const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check [--quick] | gains | \
      crosscheck [--spp N] [SCENE.xml ...]>";
 
 fn main() -> ExitCode {
@@ -26,6 +29,7 @@ fn main() -> ExitCode {
         Some("render-all") => render_all::render_all(&workspace_root(), &args[1..]),
         Some("check") => check::check(&workspace_root(), &args[1..]),
         Some("crosscheck") => crosscheck(&args[1..]),
+        Some("gains") => gains::gains(&workspace_root()),
         _ => Err(USAGE.to_string()),
     };
     match result {

@@ -65,6 +65,31 @@ pub fn relmse(a: &Image, reference: &Image) -> Result<f64, SizeMismatch> {
     mean_over_channels(a, reference, |va, vb| (va - vb).powi(2) / (vb * vb + 0.01))
 }
 
+/// Each pixel's relative squared error against the reference, `mean over channels of
+/// (a − b)² / (b² + 0.01)`, in row order (top row first): [`relmse`] is their mean. For error
+/// maps and for the error of an image region.
+pub fn relmse_per_pixel(a: &Image, reference: &Image) -> Result<Vec<f64>, SizeMismatch> {
+    if a.width != reference.width || a.height != reference.height {
+        return Err(SizeMismatch {
+            a: (a.width, a.height),
+            b: (reference.width, reference.height),
+        });
+    }
+    Ok(a.data
+        .iter()
+        .zip(&reference.data)
+        .map(|(pa, pb)| {
+            (0..3)
+                .map(|c| {
+                    let (va, vb) = (f64::from(pa[c]), f64::from(pb[c]));
+                    (va - vb).powi(2) / (vb * vb + 0.01)
+                })
+                .sum::<f64>()
+                / 3.0
+        })
+        .collect())
+}
+
 /// Mean value over pixels and channels.
 pub fn mean(image: &Image) -> f64 {
     let sum: f64 = image
@@ -107,6 +132,18 @@ mod tests {
         // Swapping the roles changes the denominators: 1/(4+0.01) + 0.01/(0.01+0.01).
         let swapped = (1.0 / 4.01 + 0.5) / 6.0;
         assert!((relmse(&b, &a).unwrap() - swapped).abs() < 1e-7);
+    }
+
+    #[test]
+    fn per_pixel_relmse_by_hand_averages_to_relmse() {
+        let a = two_pixels([2.0, 0.1, 0.0], [1.0, 1.0, 1.0]);
+        let b = two_pixels([1.0, 0.0, 0.0], [1.0, 1.0, 2.0]);
+        let per_pixel = relmse_per_pixel(&a, &b).unwrap();
+        assert!((per_pixel[0] - (1.0 / 1.01 + 1.0) / 3.0).abs() < 1e-7);
+        assert!((per_pixel[1] - (1.0 / 4.01) / 3.0).abs() < 1e-7);
+        let mean = (per_pixel[0] + per_pixel[1]) / 2.0;
+        assert!((mean - relmse(&a, &b).unwrap()).abs() < 1e-12);
+        assert!(relmse_per_pixel(&a, &Image::new(1, 2)).is_err());
     }
 
     #[test]

@@ -6,7 +6,8 @@
 //! --no-run`), runs each one itself and prints, per test, PASS or FAIL with the figures the test
 //! reported (its output lines starting with `figure:`). `--quick` runs what `cargo test` runs in
 //! CI; the full check adds the tests marked `#[ignore]` as too slow for CI (larger budgets, the
-//! scenes whose references are expensive).
+//! scenes whose references are expensive) and then measures what each technique buys
+//! (`cargo xtask gains`, timing-based, so never in CI).
 
 mod libtest;
 
@@ -34,6 +35,15 @@ pub fn check(root: &Path, args: &[String]) -> Result<bool, String> {
             results.push((binary.label.clone(), result));
         }
     }
+    let mut failed_claims = Vec::new();
+    if !quick {
+        for claim in crate::gains::measure_all(root)? {
+            crate::gains::print_claim(&claim);
+            if !claim.passed {
+                failed_claims.push(claim.name);
+            }
+        }
+    }
     let count = |verdict: Verdict| results.iter().filter(|(_, r)| r.verdict == verdict).count();
     let (passed, failed, ignored) = (
         count(Verdict::Passed),
@@ -46,7 +56,7 @@ pub fn check(root: &Path, args: &[String]) -> Result<bool, String> {
         if quick {
             format!(", {ignored} left for the full check")
         } else {
-            String::new()
+            format!("; technique gains: {} failed", failed_claims.len())
         },
         start.elapsed().as_secs_f64(),
         binaries.len()
@@ -54,7 +64,10 @@ pub fn check(root: &Path, args: &[String]) -> Result<bool, String> {
     for (label, result) in results.iter().filter(|(_, r)| r.verdict == Verdict::Failed) {
         println!("FAILED {label}::{}", result.name);
     }
-    Ok(failed == 0)
+    for name in &failed_claims {
+        println!("FAILED gains::{name}");
+    }
+    Ok(failed == 0 && failed_claims.is_empty())
 }
 
 /// Runs one test binary from its package's directory and parses what it printed.

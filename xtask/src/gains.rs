@@ -1,0 +1,403 @@
+//! `cargo xtask gains`: what each technique buys, measured on the scene built to show it, with
+//! a pass/fail line per claim. Errors are relMSE against the stored references
+//! (`scenes/refs/`, balance-heuristic MIS, which none of the compared configurations is).
+//!
+//! Claims at equal samples per pixel: next event estimation against the reference integrator on
+//! the small-light box (≥ 10×); on Veach's scene, power-heuristic MIS within 1.1× of the better
+//! of light-only and BSDF-only in every plate × light region and better than both overall;
+//! stratified and blue-noise samplers better than independent on the soft-shadow scene (and,
+//! reported alongside, on the thin-lens scene). Claims at equal time (efficiency
+//! 1 / (relMSE × seconds)): power-proportional light selection over uniform and RIS over
+//! power-proportional on the many-lights scene; Russian roulette over none on the Cornell box.
+//! Each error is the mean over several seeds, each time the median; the machine should be quiet.
+
+use integrators::reference::ReferenceSettings;
+use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+use render::driver::{RenderBudget, RenderOptions};
+use render::image::Image;
+use render::metrics::{relmse, relmse_per_pixel};
+use render::session::{film_filter, render_scene};
+use render::technique::{RenderPlan, Transport};
+use sampling::sampler::SamplerKind;
+use scene::{BsdfDesc, RenderScene};
+use std::path::Path;
+
+/// One claim's verdict and the figures behind it.
+pub struct Claim {
+    /// What is claimed.
+    pub name: String,
+    /// Whether the measurement supports it.
+    pub passed: bool,
+    /// The measured figures.
+    pub figure: String,
+}
+
+/// Runs `cargo xtask gains`; `Ok(false)` when a claim failed.
+pub fn gains(root: &Path) -> Result<bool, String> {
+    let claims = measure_all(root)?;
+    for claim in &claims {
+        print_claim(claim);
+    }
+    Ok(claims.iter().all(|c| c.passed))
+}
+
+/// Every claim of the module documentation, measured.
+pub fn measure_all(root: &Path) -> Result<Vec<Claim>, String> {
+    let mut claims = vec![nee_on_the_small_light_box(root)?];
+    claims.extend(mis_on_veach(root)?);
+    claims.extend(light_selection_on_many_lights(root)?);
+    claims.push(samplers(root, "softshadow")?);
+    claims.push(samplers(root, "thinlens")?);
+    claims.push(roulette_on_the_cornell_box(root)?);
+    Ok(claims)
+}
+
+/// `PASS name` or `FAIL name`, then the figure indented.
+pub fn print_claim(claim: &Claim) {
+    println!(
+        "{} gains::{}\n       {}",
+        if claim.passed { "PASS" } else { "FAIL" },
+        claim.name,
+        claim.figure
+    );
+}
+
+/// A suite scene at its own resolution with its stored reference.
+struct Subject {
+    name: String,
+    scene: RenderScene,
+    reference: Image,
+}
+
+impl Subject {
+    fn load(root: &Path, name: &str) -> Result<Self, String> {
+        let scene = scene::load(&root.join(format!("scenes/{name}.xml")), &[])
+            .map_err(|e| e.to_string())?;
+        let reference_file = root.join(format!("scenes/refs/{name}.exr"));
+        let reference = Image::read_exr(&reference_file)
+            .map_err(|e| format!("{e} (run `cargo xtask refs`)"))?;
+        Ok(Self {
+            name: name.to_string(),
+            scene,
+            reference,
+        })
+    }
+
+    /// The scene's depth, as `strata render` reads it.
+    fn max_depth(&self) -> Option<u32> {
+        u32::try_from(self.scene.desc.integrator.max_depth).ok()
+    }
+
+    /// MIS with the power heuristic, power-proportional selection, no roulette.
+    fn mis(&self) -> PathSettings {
+        PathSettings {
+            max_depth: self.max_depth(),
+            hide_emitters: self.scene.desc.integrator.hide_emitters,
+            sample_lights: true,
+            sample_bsdf: true,
+            mis: Mis::Power,
+            light_selection: LightSelectionMode::Power,
+            russian_roulette: None,
+        }
+    }
+
+    /// Renders `transport` with `sampler` at `spp` for each seed of `seeds`: the images and the
+    /// median rendering time in seconds.
+    fn render(
+        &self,
+        transport: Transport,
+        sampler: SamplerKind,
+        spp: u32,
+        seeds: &[u32],
+    ) -> Result<(Vec<Image>, f64), String> {
+        let filter = film_filter(self.scene.desc.film.filter).map_err(|e| e.to_string())?;
+        let mut images = Vec::new();
+        let mut seconds = Vec::new();
+        for &seed in seeds {
+            let plan = RenderPlan {
+                transport,
+                sampler,
+                seed,
+                budget: RenderBudget::spp(spp),
+                sampler_spp: spp,
+            };
+            let (output, _) = render_scene(&self.scene, &plan, &filter, &RenderOptions::quiet())
+                .map_err(|e| e.to_string())?;
+            if output.non_finite.nan + output.non_finite.inf > 0 {
+                return Err(format!(
+                    "{}: {} NaN and {} infinite samples (seed {seed}, {spp} spp)",
+                    self.name, output.non_finite.nan, output.non_finite.inf
+                ));
+            }
+            images.push(output.film.to_image());
+            seconds.push(output.seconds);
+        }
+        seconds.sort_by(f64::total_cmp);
+        Ok((images, seconds[seconds.len() / 2]))
+    }
+
+    /// The mean relMSE of `images` against the reference.
+    fn relmse(&self, images: &[Image]) -> Result<f64, String> {
+        let mut sum = 0.0;
+        for image in images {
+            sum += relmse(image, &self.reference).map_err(|e| e.to_string())?;
+        }
+        Ok(sum / images.len() as f64)
+    }
+}
+
+const SEEDS: [u32; 4] = [11, 12, 13, 14];
+
+fn nee_on_the_small_light_box(root: &Path) -> Result<Claim, String> {
+    let subject = Subject::load(root, "cbox-smalllight")?;
+    let spp = 64;
+    let reference = Transport::Reference(ReferenceSettings {
+        max_depth: subject.max_depth(),
+        hide_emitters: false,
+    });
+    let nee = Transport::Path(PathSettings {
+        mis: Mis::Off,
+        ..subject.mis()
+    });
+    let (images, _) = subject.render(reference, SamplerKind::Independent, spp, &SEEDS[..2])?;
+    let without = subject.relmse(&images)?;
+    let (images, _) = subject.render(nee, SamplerKind::Independent, spp, &SEEDS[..2])?;
+    let with = subject.relmse(&images)?;
+    let ratio = without / with;
+    Ok(Claim {
+        name: "next event estimation on the small-light box".to_string(),
+        passed: ratio >= 10.0,
+        figure: format!(
+            "{spp} spp, 2 seeds: relMSE reference integrator {without:.3e}, NEE {with:.3e}: \
+             {ratio:.0}x less (need >= 10x)"
+        ),
+    })
+}
+
+/// Which plate (0 = first rough conductor shape in the file) and which quarter of the image
+/// width each pixel's centre shows, `None` where no plate is seen.
+fn veach_regions(subject: &Subject) -> Vec<Option<(usize, usize)>> {
+    let scene = &subject.scene;
+    let plates: Vec<u32> = scene
+        .desc
+        .shapes
+        .iter()
+        .enumerate()
+        .filter(|(_, shape)| {
+            matches!(
+                scene.desc.bsdfs[shape.bsdf],
+                BsdfDesc::RoughConductor { .. }
+            )
+        })
+        .map(|(i, _)| i as u32)
+        .collect();
+    let (width, height) = (scene.desc.film.width, scene.desc.film.height);
+    let mut counters = integrators::RayCounters::default();
+    (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let film = glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            let ray = scene.camera.generate_ray(film, glam::Vec2::ZERO);
+            let surface = scene.world.intersect(&ray, &mut counters)?;
+            let plate = plates.iter().position(|&s| s == surface.hit.shape)?;
+            Some((plate, (4 * x / width) as usize))
+        })
+        .collect()
+}
+
+fn mis_on_veach(root: &Path) -> Result<Vec<Claim>, String> {
+    let subject = Subject::load(root, "veach-mis")?;
+    let regions = veach_regions(&subject);
+    let spp = 64;
+    let base = subject.mis();
+    let strategies = [
+        (
+            "bsdf-only",
+            PathSettings {
+                sample_lights: false,
+                mis: Mis::Off,
+                ..base
+            },
+        ),
+        (
+            "light-only",
+            PathSettings {
+                mis: Mis::Off,
+                ..base
+            },
+        ),
+        ("mis power", base),
+    ];
+    // errors[strategy][region] summed over seeds and pixels, with pixel counts per region.
+    let mut errors = [[0.0_f64; 16]; 3];
+    let mut counts = [0usize; 16];
+    let mut overall = [0.0_f64; 3];
+    for (s, (_, settings)) in strategies.iter().enumerate() {
+        let (images, _) = subject.render(
+            Transport::Path(*settings),
+            SamplerKind::Independent,
+            spp,
+            &SEEDS,
+        )?;
+        overall[s] = subject.relmse(&images)?;
+        for image in &images {
+            let per_pixel =
+                relmse_per_pixel(image, &subject.reference).map_err(|e| e.to_string())?;
+            for (error, region) in per_pixel.iter().zip(&regions) {
+                if let Some((plate, column)) = region {
+                    errors[s][plate * 4 + column] += error;
+                    if s == 0 {
+                        counts[plate * 4 + column] += 1;
+                    }
+                }
+            }
+        }
+    }
+    let mut worst: (f64, usize) = (0.0, 0);
+    for region in 0..16 {
+        if counts[region] == 0 {
+            continue;
+        }
+        let better = errors[0][region].min(errors[1][region]);
+        let ratio = errors[2][region] / better;
+        if ratio > worst.0 {
+            worst = (ratio, region);
+        }
+    }
+    let (bsdf, light, mis) = (overall[0], overall[1], overall[2]);
+    let covered = counts.iter().filter(|&&c| c > 0).count();
+    Ok(vec![
+        Claim {
+            name: "MIS within 1.1x of the better strategy in every Veach region".to_string(),
+            passed: worst.0 <= 1.1 && covered == 16,
+            figure: format!(
+                "{spp} spp, {} seeds, {covered} of 16 plate x light regions seen: largest \
+                 relMSE(MIS) / min(relMSE(light-only), relMSE(BSDF-only)) {:.2} on plate {} \
+                 (0 = first in the file), light column {}",
+                SEEDS.len(),
+                worst.0,
+                worst.1 / 4,
+                worst.1 % 4
+            ),
+        },
+        Claim {
+            name: "MIS better than both strategies on the whole Veach image".to_string(),
+            passed: mis < bsdf.min(light),
+            figure: format!(
+                "{spp} spp: relMSE BSDF-only {bsdf:.3e}, light-only {light:.3e}, MIS power \
+                 {mis:.3e} ({:.2}x less than the better)",
+                bsdf.min(light) / mis
+            ),
+        },
+    ])
+}
+
+/// Efficiency 1 / (relMSE × seconds) of `settings` on `subject`.
+fn efficiency(
+    subject: &Subject,
+    settings: PathSettings,
+    sampler: SamplerKind,
+    spp: u32,
+) -> Result<(f64, f64, f64), String> {
+    let (images, seconds) = subject.render(Transport::Path(settings), sampler, spp, &SEEDS[..3])?;
+    let error = subject.relmse(&images)?;
+    Ok((1.0 / (error * seconds), error, seconds))
+}
+
+fn light_selection_on_many_lights(root: &Path) -> Result<Vec<Claim>, String> {
+    let subject = Subject::load(root, "manylights")?;
+    let spp = 32;
+    let base = subject.mis();
+    let mut measured = Vec::new();
+    for (label, selection) in [
+        ("uniform", LightSelectionMode::Uniform),
+        ("power", LightSelectionMode::Power),
+        ("RIS 8", LightSelectionMode::Ris { candidates: 8 }),
+    ] {
+        let settings = PathSettings {
+            light_selection: selection,
+            ..base
+        };
+        let (eff, error, seconds) = efficiency(&subject, settings, SamplerKind::Independent, spp)?;
+        measured.push((label, eff, error, seconds));
+    }
+    let describe = |i: usize| {
+        let (label, eff, error, seconds) = measured[i];
+        format!("{label}: relMSE {error:.3e} in {seconds:.3} s, efficiency {eff:.3e}")
+    };
+    Ok(vec![
+        Claim {
+            name: "power-proportional selection beats uniform at equal time (many lights)"
+                .to_string(),
+            passed: measured[1].1 > measured[0].1,
+            figure: format!(
+                "{spp} spp, 3 seeds: {}; {}: {:.2}x",
+                describe(0),
+                describe(1),
+                measured[1].1 / measured[0].1
+            ),
+        },
+        Claim {
+            name: "RIS beats power-proportional selection at equal time (many lights)".to_string(),
+            passed: measured[2].1 > measured[1].1,
+            figure: format!(
+                "{spp} spp, 3 seeds: {}; {}: {:.2}x",
+                describe(1),
+                describe(2),
+                measured[2].1 / measured[1].1
+            ),
+        },
+    ])
+}
+
+fn samplers(root: &Path, name: &str) -> Result<Claim, String> {
+    let subject = Subject::load(root, name)?;
+    let spp = 16;
+    let mut errors = Vec::new();
+    for sampler in [
+        SamplerKind::Independent,
+        SamplerKind::Stratified,
+        SamplerKind::BlueNoise,
+    ] {
+        let (images, _) = subject.render(Transport::Path(subject.mis()), sampler, spp, &SEEDS)?;
+        errors.push(subject.relmse(&images)?);
+    }
+    Ok(Claim {
+        name: format!("stratified and blue-noise samplers beat independent ({name})"),
+        passed: errors[1] < errors[0] && errors[2] < errors[0],
+        figure: format!(
+            "{spp} spp, {} seeds: relMSE independent {:.3e}, stratified {:.3e} ({:.2}x less), \
+             blue noise {:.3e} ({:.2}x less)",
+            SEEDS.len(),
+            errors[0],
+            errors[1],
+            errors[0] / errors[1],
+            errors[2],
+            errors[0] / errors[2]
+        ),
+    })
+}
+
+fn roulette_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
+    let subject = Subject::load(root, "cbox")?;
+    let spp = 32;
+    let without = subject.mis();
+    let with = PathSettings {
+        russian_roulette: Some(RussianRoulette {
+            start_depth: subject.scene.desc.integrator.rr_depth.max(1),
+        }),
+        ..without
+    };
+    let (eff_off, error_off, seconds_off) =
+        efficiency(&subject, without, SamplerKind::Independent, spp)?;
+    let (eff_on, error_on, seconds_on) = efficiency(&subject, with, SamplerKind::Independent, spp)?;
+    Ok(Claim {
+        name: "Russian roulette improves efficiency on the Cornell box".to_string(),
+        passed: eff_on > eff_off,
+        figure: format!(
+            "{spp} spp, 3 seeds: without relMSE {error_off:.3e} in {seconds_off:.3} s, with \
+             {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x",
+            eff_on / eff_off
+        ),
+    })
+}
