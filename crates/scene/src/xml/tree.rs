@@ -135,6 +135,25 @@ struct Param {
 
 /// Parses the scene file at `path` with the given `$name` overrides into its root `<scene>` node.
 pub(crate) fn parse_scene_file(path: &Path, overrides: &[(String, String)]) -> Result<ObjectNode> {
+    parse_scene(path, None, overrides)
+}
+
+/// Parses `text` as the scene file at `path` (which names it in messages and resolves its
+/// relative paths) with the given `$name` overrides into its root `<scene>` node.
+pub(crate) fn parse_scene_text(
+    path: &Path,
+    text: &[u8],
+    overrides: &[(String, String)],
+) -> Result<ObjectNode> {
+    parse_scene(path, Some(text), overrides)
+}
+
+/// Parses the scene at `path`, read from disk unless its `text` is given.
+fn parse_scene(
+    path: &Path,
+    text: Option<&[u8]>,
+    overrides: &[(String, String)],
+) -> Result<ObjectNode> {
     let mut builder = Builder {
         params: overrides
             .iter()
@@ -149,7 +168,10 @@ pub(crate) fn parse_scene_file(path: &Path, overrides: &[(String, String)]) -> R
     };
     builder.sort_params();
     let file_loc = Loc::file_only(path);
-    let root = builder.parse_file(path, 0, &file_loc)?;
+    let root = match text {
+        Some(text) => builder.parse_text(path, text.to_vec(), 0, &file_loc)?,
+        None => builder.parse_file(path, 0, &file_loc)?,
+    };
     if root.tag != "scene" {
         return Err(root.loc.error(format!(
             "the root element must be <scene>, not <{}>",
@@ -182,6 +204,17 @@ impl Builder {
     fn parse_file(&mut self, path: &Path, depth: usize, origin: &Loc) -> Result<ObjectNode> {
         let text = std::fs::read(path)
             .map_err(|e| origin.error(format!("cannot read \"{}\": {e}", path.display())))?;
+        self.parse_text(path, text, depth, origin)
+    }
+
+    /// Parses `text`, the contents of the XML file at `path`, and returns its root object.
+    fn parse_text(
+        &mut self,
+        path: &Path,
+        text: Vec<u8>,
+        depth: usize,
+        origin: &Loc,
+    ) -> Result<ObjectNode> {
         let text = String::from_utf8(text)
             .map_err(|_| origin.error(format!("\"{}\" is not valid UTF-8", path.display())))?;
         let file = Arc::new(path.to_path_buf());
