@@ -19,9 +19,8 @@ use scene::limits::MAX_FILM_PIXELS;
 /// Runs `strata render` as `args` say; stops early once `stop` is raised.
 pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
     let load_start = Instant::now();
-    let scene_bytes = std::fs::read(&args.scene).map_err(|e| {
-        CommandError::BadInput(format!("{}: cannot read: {e}", args.scene.display()))
-    })?;
+    let scene_bytes =
+        scene::read_scene_file(&args.scene).map_err(|e| CommandError::BadInput(e.to_string()))?;
     let mut desc = scene::parse_bytes(&scene_bytes, &args.scene, &[])
         .map_err(|e| CommandError::BadInput(e.to_string()))?;
     if let (Some(width), Some(height)) = (args.width, args.height) {

@@ -7,6 +7,7 @@
 //! samples to exactly these sums, so a render stopped and resumed any number of times gives the
 //! same bits as one uninterrupted render.
 
+use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 
 use glam::DVec3;
@@ -112,43 +113,77 @@ impl RenderState {
             .take(MAX_HEADER_BYTES)
             .position(|&b| b == b'\n')
             .ok_or("not a Strata render state (no header line)")?;
-        let header: StateHeader = serde_json::from_slice(&bytes[..end])
-            .map_err(|e| format!("not a Strata render state (bad header: {e})"))?;
-        if header.format != FORMAT || header.version != VERSION {
-            return Err(format!(
-                "not a Strata render state of version {VERSION} (format \"{}\", version {})",
-                header.format, header.version
-            ));
-        }
-        let pixels = u64::from(header.width) * u64::from(header.height);
-        if pixels == 0 || pixels > scene::limits::MAX_FILM_PIXELS {
-            return Err(format!(
-                "a {}x{} image is outside the supported sizes",
-                header.width, header.height
-            ));
-        }
-        let data = &bytes[end + 1..];
-        let expected = pixels as usize * PIXEL_BYTES;
-        if data.len() != expected {
-            return Err(format!(
-                "truncated or corrupt: {} bytes of pixel sums where a {}x{} image needs {expected}",
-                data.len(),
-                header.width,
-                header.height
-            ));
-        }
-        let pixels = data.chunks_exact(PIXEL_BYTES).map(read_pixel).collect();
-        let film = Film::from_pixels(header.width, header.height, pixels)
-            .ok_or("pixel count does not match the size")?;
-        Ok(Self { header, film })
+        let header = parse_header(&bytes[..end])?;
+        decode(header, &bytes[end + 1..])
     }
 
-    /// Reads the state file at `path`; errors name the file.
+    /// Reads the state file at `path`, reading no more than its header says it holds; errors
+    /// name the file.
     pub fn read(path: &Path) -> Result<Self, String> {
-        let bytes = std::fs::read(path)
+        let named = |e: String| format!("render state '{}': {e}", path.display());
+        let file = std::fs::File::open(path)
             .map_err(|e| format!("cannot read render state '{}': {e}", path.display()))?;
-        Self::from_bytes(&bytes).map_err(|e| format!("render state '{}': {e}", path.display()))
+        let mut reader = BufReader::new(file);
+        let mut line = Vec::new();
+        (&mut reader)
+            .take(MAX_HEADER_BYTES as u64)
+            .read_until(b'\n', &mut line)
+            .map_err(|e| named(e.to_string()))?;
+        if line.pop() != Some(b'\n') {
+            return Err(named(
+                "not a Strata render state (no header line)".to_string(),
+            ));
+        }
+        let header = parse_header(&line).map_err(named)?;
+        let mut data = Vec::new();
+        reader
+            .take(data_bytes(&header) as u64 + 1)
+            .read_to_end(&mut data)
+            .map_err(|e| named(e.to_string()))?;
+        decode(header, &data).map_err(named)
     }
+}
+
+/// Parses and checks the header line (without its newline).
+fn parse_header(line: &[u8]) -> Result<StateHeader, String> {
+    let header: StateHeader = serde_json::from_slice(line)
+        .map_err(|e| format!("not a Strata render state (bad header: {e})"))?;
+    if header.format != FORMAT || header.version != VERSION {
+        return Err(format!(
+            "not a Strata render state of version {VERSION} (format \"{}\", version {})",
+            header.format, header.version
+        ));
+    }
+    let pixels = u64::from(header.width) * u64::from(header.height);
+    if pixels == 0 || pixels > scene::limits::MAX_FILM_PIXELS {
+        return Err(format!(
+            "a {}x{} image is outside the supported sizes",
+            header.width, header.height
+        ));
+    }
+    Ok(header)
+}
+
+/// Bytes of pixel sums a checked `header` calls for.
+fn data_bytes(header: &StateHeader) -> usize {
+    header.width as usize * header.height as usize * PIXEL_BYTES
+}
+
+/// The state of `header` with the pixel sums in `data`, which must have exactly their size.
+fn decode(header: StateHeader, data: &[u8]) -> Result<RenderState, String> {
+    let expected = data_bytes(&header);
+    if data.len() != expected {
+        return Err(format!(
+            "truncated or corrupt: {} bytes of pixel sums where a {}x{} image needs {expected}",
+            data.len(),
+            header.width,
+            header.height
+        ));
+    }
+    let pixels = data.chunks_exact(PIXEL_BYTES).map(read_pixel).collect();
+    let film = Film::from_pixels(header.width, header.height, pixels)
+        .ok_or("pixel count does not match the size")?;
+    Ok(RenderState { header, film })
 }
 
 /// One pixel's sums from its [`PIXEL_BYTES`] bytes.

@@ -84,6 +84,18 @@ pub fn parse_bytes(
     loader::load_text(path, text, overrides)
 }
 
+/// Reads the scene file at `path` (at most [`limits::MAX_SCENE_FILE_BYTES`]) for
+/// [`parse_bytes`]; the error names the file.
+pub fn read_scene_file(path: &Path) -> Result<Vec<u8>, LoadError> {
+    limits::read_at_most(path, limits::MAX_SCENE_FILE_BYTES).map_err(|e| LoadError {
+        file: path.to_path_buf(),
+        line: 0,
+        column: 0,
+        element: String::new(),
+        message: format!("cannot read \"{}\": {e}", path.display()),
+    })
+}
+
 /// Parses the contents of a Wavefront OBJ file (the whole file is one mesh, in the file's own
 /// coordinates, not yet placed in the world). `flip_tex_coords` replaces v by 1 − v, Mitsuba's
 /// default for OBJ. Errors start with the 1-based line (`line N: …`).

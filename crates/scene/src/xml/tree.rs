@@ -14,6 +14,7 @@ use super::attrs::Attrs;
 use super::transform::{TRANSFORM_OPS, operation_matrix};
 use super::values::{parse_boolean, parse_float, parse_integer, parse_vec3_or_scalar, tokenize};
 use crate::error::{LoadError, Loc, Result};
+use crate::limits::{MAX_SCENE_FILE_BYTES, read_at_most};
 
 /// Tags that create plugin objects.
 const OBJECT_TAGS: [&str; 13] = [
@@ -205,7 +206,7 @@ impl Builder {
     /// Reads and parses one XML file and returns its root object. `origin` locates the element that
     /// asked for the file (the `<include>`, or the file itself for the scene).
     fn parse_file(&mut self, path: &Path, depth: usize, origin: &Loc) -> Result<ObjectNode> {
-        let text = std::fs::read(path)
+        let text = read_at_most(path, MAX_SCENE_FILE_BYTES)
             .map_err(|e| origin.error(format!("cannot read \"{}\": {e}", path.display())))?;
         self.parse_text(path, text, depth)
     }
