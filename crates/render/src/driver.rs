@@ -155,9 +155,15 @@ where
             )
         }
     };
-    // This run's share of the budget: the sample limit counts the resumed samples too.
+    // This run's share of the budget: the sample limit counts the resumed samples too, and the
+    // total never passes u32::MAX (sample indices are u32).
     let run_budget = RenderBudget {
-        max_spp: budget.max_spp.map(|max| max.saturating_sub(resumed_spp)),
+        max_spp: Some(
+            budget
+                .max_spp
+                .unwrap_or(u32::MAX)
+                .saturating_sub(resumed_spp),
+        ),
         ..*budget
     };
     let progress = Progress::new(options.progress);
@@ -165,14 +171,14 @@ where
     let (mut spp, mut last_pass) = (resumed_spp, 0u32);
     let mut interrupted = false;
     loop {
-        let stop_requested = options.stop.as_ref().is_some_and(StopSignal::is_raised);
-        if stop_requested && spp > resumed_spp {
-            interrupted = true;
-            break;
-        }
         let pass_spp =
             run_budget.next_pass_spp(spp - resumed_spp, start.elapsed().as_secs_f64(), last_pass);
         if pass_spp == 0 {
+            break;
+        }
+        let stop_requested = options.stop.as_ref().is_some_and(StopSignal::is_raised);
+        if stop_requested && spp > resumed_spp {
+            interrupted = true;
             break;
         }
         let report = |fraction_of_pass: f64| {
