@@ -55,10 +55,13 @@ where
     let mut prefix = std::ffi::OsString::from(".");
     prefix.push(name);
     prefix.push(".");
-    let mut temp = tempfile::Builder::new()
-        .prefix(&prefix)
-        .suffix(".tmp")
-        .tempfile_in(dir)?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    // Temporary files are private (0600) by default; the output gets the usual 0666 less the
+    // umask, as a file created directly would.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let mut temp = builder.tempfile_in(dir)?;
     {
         let mut writer = BufWriter::new(temp.as_file_mut());
         write(&mut writer)?;
@@ -98,6 +101,19 @@ mod tests {
         write_atomically::<io::Error, _>(&path, |w| w.write_all(b"hello")).unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), b"hello");
         assert_eq!(listing(dir.path()), ["out.txt"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn outputs_get_the_mode_of_a_directly_created_file() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode();
+        let path = dir.path().join("out.txt");
+        write_bytes_atomically(&path, b"x").unwrap();
+        let direct = dir.path().join("direct.txt");
+        std::fs::write(&direct, b"x").unwrap();
+        assert_eq!(mode(&path), mode(&direct), "0666 less the umask, not 0600");
     }
 
     #[test]

@@ -5,7 +5,8 @@ use std::fmt;
 /// When to stop rendering: after `max_spp` samples per pixel or once `max_seconds` of rendering
 /// time are spent, whichever comes first. Rendering always stops at a pass boundary, so every
 /// pixel has the same number of samples; a time budget may be overrun by at most one pass of
-/// 1 sample per pixel once the passes have adapted to the measured speed.
+/// 1 sample per pixel once the passes have adapted to the measured speed. Passes last at most
+/// about [`MAX_PASS_SECONDS`], so a request to stop (Ctrl-C) is honoured promptly.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RenderBudget {
     /// Stop once every pixel has this many samples.
@@ -14,13 +15,25 @@ pub struct RenderBudget {
     pub max_seconds: Option<f64>,
 }
 
-/// A budget that cannot be rendered.
+/// Longest a pass is planned to take, in seconds, once the speed is measured: the driver checks
+/// for a request to stop (Ctrl-C) between passes, so this bounds how long stopping takes.
+pub const MAX_PASS_SECONDS: f64 = 1.0;
+
+/// A render that cannot start: its budget cannot be rendered, or what it continues from does
+/// not fit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum BudgetError {
     /// Neither a sample count nor a time limit was given: the render would never stop.
     Unbounded,
     /// The time limit is negative or not a number.
     InvalidSeconds(f64),
+    /// The film to resume from is `film` (width, height) pixels but the image is `image`.
+    ResumeSize {
+        /// The resumed film's width and height in pixels.
+        film: (u32, u32),
+        /// The image's width and height in pixels.
+        image: (u32, u32),
+    },
 }
 
 impl fmt::Display for BudgetError {
@@ -33,6 +46,11 @@ impl fmt::Display for BudgetError {
             Self::InvalidSeconds(s) => write!(
                 f,
                 "the time limit must be a non-negative number of seconds, got {s}"
+            ),
+            Self::ResumeSize { film, image } => write!(
+                f,
+                "the saved render is {}x{} pixels but the image is {}x{}",
+                film.0, film.1, image.0, image.1
             ),
         }
     }
@@ -70,32 +88,31 @@ impl RenderBudget {
     /// Samples per pixel for the next pass, or 0 to stop, given `spp_done` samples per pixel
     /// rendered in `elapsed` seconds over passes the last of which had `last_pass` samples.
     ///
-    /// - The sample limit is never exceeded, and with only a sample limit one pass renders
-    ///   everything (the tiles still spread over the threads).
-    /// - With a time limit the first pass has 1 sample per pixel, to measure the speed; each
-    ///   later pass fills the remaining time at the measured speed, at most doubling the
-    ///   previous pass, and at least 1; rendering stops once the time is spent. At least one
-    ///   pass is always rendered (unless the sample limit is 0).
+    /// - The sample limit is never exceeded.
+    /// - The first pass has 1 sample per pixel, to measure the speed; each later pass fills the
+    ///   remaining time, but at most [`MAX_PASS_SECONDS`], at the measured speed, at most
+    ///   doubling the previous pass, and at least 1. With a time limit rendering stops once the
+    ///   time is spent. At least one pass is always rendered (unless the sample limit is 0).
+    ///
+    /// How the samples are split into passes never changes the image (see [`crate::driver`]).
     pub fn next_pass_spp(&self, spp_done: u32, elapsed: f64, last_pass: u32) -> u32 {
         let remaining_spp = self
             .max_spp
             .map_or(u32::MAX - spp_done, |max| max.saturating_sub(spp_done));
-        let Some(max_seconds) = self.max_seconds else {
-            return remaining_spp;
-        };
         if remaining_spp == 0 {
             return 0;
         }
         if spp_done == 0 {
             return 1;
         }
-        let remaining_seconds = max_seconds - elapsed;
+        let remaining_seconds = self.max_seconds.map_or(f64::INFINITY, |max| max - elapsed);
         if remaining_seconds <= 0.0 {
             return 0;
         }
         let seconds_per_spp = elapsed / f64::from(spp_done);
+        let pass_seconds = remaining_seconds.min(MAX_PASS_SECONDS);
         let fitting = if seconds_per_spp > 0.0 {
-            remaining_seconds / seconds_per_spp
+            pass_seconds / seconds_per_spp
         } else {
             f64::INFINITY
         };
@@ -124,10 +141,26 @@ mod tests {
     }
 
     #[test]
-    fn spp_only_is_one_pass_of_everything() {
+    fn spp_only_grows_short_passes_up_to_the_limit() {
         let budget = RenderBudget::spp(64);
-        assert_eq!(budget.next_pass_spp(0, 0.0, 0), 64);
-        assert_eq!(budget.next_pass_spp(64, 3.0, 64), 0);
+        assert_eq!(budget.next_pass_spp(0, 0.0, 0), 1, "first pass measures");
+        assert_eq!(budget.next_pass_spp(1, 0.001, 1), 2, "at most doubling");
+        assert_eq!(
+            budget.next_pass_spp(7, 0.7, 4),
+            8,
+            "0.1 s per spp: a pass of at most 1 s holds 10, doubling caps at 8"
+        );
+        assert_eq!(
+            budget.next_pass_spp(30, 3.0, 16),
+            10,
+            "a pass lasts at most MAX_PASS_SECONDS"
+        );
+        assert_eq!(
+            budget.next_pass_spp(60, 0.06, 32),
+            4,
+            "never past the limit"
+        );
+        assert_eq!(budget.next_pass_spp(64, 3.0, 4), 0);
         assert_eq!(RenderBudget::spp(0).next_pass_spp(0, 0.0, 0), 0);
     }
 
@@ -142,9 +175,14 @@ mod tests {
         // 1 spp took 0.1 s: 99 more would fit, but the pass at most doubles.
         assert_eq!(budget.next_pass_spp(1, 0.1, 1), 2);
         assert_eq!(
+            budget.next_pass_spp(64, 9.5, 32),
+            3,
+            "0.5 s left at 0.148 s per spp"
+        );
+        assert_eq!(
             budget.next_pass_spp(64, 8.0, 32),
-            16,
-            "2 s left at 0.125 s per spp"
+            8,
+            "2 s left at 0.125 s per spp, but a pass lasts at most 1 s"
         );
         assert_eq!(budget.next_pass_spp(99, 9.95, 35), 1, "never less than one");
         assert_eq!(budget.next_pass_spp(100, 10.0, 1), 0, "time spent");

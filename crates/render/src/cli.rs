@@ -4,8 +4,9 @@
 //! strata render SCENE.xml --out OUT.exr [--spp N] [--time SECONDS]
 //!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise]
 //!               [--rr on|off] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
-//!               [--png OUT.png] [--stats OUT.json]
+//!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
 //! strata diff A.exr B.exr
+//! strata merge A.exr B.exr … --out OUT.exr [--png OUT.png]
 //! ```
 //!
 //! Bad flags and values make clap print a message and exit with status 2.
@@ -34,6 +35,10 @@ pub enum Command {
     Render(RenderArgs),
     /// Compare two EXR images; print one JSON line {"rmse", "relmse", "mean_a", "mean_b"}.
     Diff(DiffArgs),
+    /// Merge renders of one scene made with different --seed values into the image of all their
+    /// samples: each pixel is the inputs' values weighted by the samples per pixel recorded in
+    /// their EXR headers (the "spp" attribute), and the output records the total.
+    Merge(MergeArgs),
 }
 
 /// Integrator presets (`--integrator`).
@@ -88,10 +93,13 @@ pub struct RenderArgs {
     /// Output image: linear RGB float32 OpenEXR, top row first.
     #[arg(long, value_name = "OUT.exr")]
     pub out: PathBuf,
-    /// Samples per pixel (at least 1); with --time, whichever limit comes first stops.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    /// Samples per pixel (1 to 2^24); with --time, whichever limit comes first stops. With
+    /// --resume, the total including the resumed samples.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=i64::from(scene::limits::MAX_SAMPLE_COUNT)))]
     pub spp: Option<u32>,
-    /// Rendering time budget in seconds (fractions allowed); stops at a pass boundary.
+    /// Rendering time budget in seconds (fractions allowed); stops at a pass boundary. Ctrl-C
+    /// also stops at the next pass boundary and writes the image of the samples done so far
+    /// (exit status 130); a second Ctrl-C quits at once without writing.
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
     pub time: Option<f64>,
     /// Integrator preset.
@@ -125,6 +133,30 @@ pub struct RenderArgs {
     /// Also write render statistics as JSON.
     #[arg(long, value_name = "OUT.json")]
     pub stats: Option<PathBuf>,
+    /// Also save the render's state (every pixel's sums, the samples done, the settings) to
+    /// STATE when it ends or is interrupted, for --resume. Written atomically.
+    #[arg(long, value_name = "STATE")]
+    pub state: Option<PathBuf>,
+    /// Continue the render saved in STATE (by --state) up to --spp (a total) or for --time
+    /// more seconds; the result has the same bits as one uninterrupted render. The scene file
+    /// and every setting that changes sample values (integrator, sampler, seed, size) must be
+    /// the same as when STATE was saved.
+    #[arg(long, value_name = "STATE")]
+    pub resume: Option<PathBuf>,
+}
+
+/// `strata merge`.
+#[derive(Debug, Args, PartialEq)]
+pub struct MergeArgs {
+    /// The EXR images to merge, as written by `strata render` (with the "spp" header attribute).
+    #[arg(required = true, num_args = 1.., value_name = "IN.exr")]
+    pub inputs: Vec<PathBuf>,
+    /// The merged image (linear RGB float32 OpenEXR, with the total "spp").
+    #[arg(long, value_name = "OUT.exr")]
+    pub out: PathBuf,
+    /// Also write an 8-bit sRGB PNG preview.
+    #[arg(long, value_name = "OUT.png")]
+    pub png: Option<PathBuf>,
 }
 
 /// `strata diff`.
@@ -226,6 +258,27 @@ mod tests {
             (r.threads, r.width, r.height, r.png, r.stats),
             (None, None, None, None, None)
         );
+        assert_eq!((r.state, r.resume), (None, None));
+    }
+
+    #[test]
+    fn state_resume_and_merge_parse() {
+        let r = render_args(&[
+            "render", "s.xml", "--out", "o.exr", "--state", "a.state", "--resume", "b.state",
+        ]);
+        assert_eq!(r.state.as_deref(), Some(Path::new("a.state")));
+        assert_eq!(r.resume.as_deref(), Some(Path::new("b.state")));
+        let cli = parse(&["merge", "a.exr", "b.exr", "c.exr", "--out", "m.exr"]).unwrap();
+        assert_eq!(
+            cli.command,
+            Command::Merge(MergeArgs {
+                inputs: vec!["a.exr".into(), "b.exr".into(), "c.exr".into()],
+                out: "m.exr".into(),
+                png: None,
+            })
+        );
+        assert!(parse(&["merge", "--out", "m.exr"]).is_err());
+        assert!(parse(&["merge", "a.exr"]).is_err());
     }
 
     #[test]
@@ -265,6 +318,7 @@ mod tests {
             &["render", "s.xml", "--out", "o.exr", "--time", "soon"],
             &["render", "s.xml", "--out", "o.exr", "--spp", "0"],
             &["render", "s.xml", "--out", "o.exr", "--spp", "-4"],
+            &["render", "s.xml", "--out", "o.exr", "--spp", "16777217"],
             &["render", "s.xml", "--out", "o.exr", "--integrator", "bdpt"],
             &["render", "s.xml", "--out", "o.exr", "--rr", "maybe"],
             &["render", "s.xml", "--out", "o.exr", "--threads", "0"],

@@ -5,6 +5,8 @@ use std::io::Write;
 
 use crate::cli::Command;
 use crate::diff::DiffReport;
+use crate::merge::merge_files;
+use crate::stop::{INTERRUPTED_EXIT_STATUS, StopSignal};
 
 /// A failed command. The exit status is 2 for bad input and 1 for anything else
 /// (command-line syntax errors are reported by clap, also with status 2).
@@ -15,14 +17,19 @@ pub enum CommandError {
     BadInput(String),
     /// Anything else (an output that cannot be written, an unfinished feature).
     Failed(String),
+    /// A render was stopped by Ctrl-C before its budget was spent; it wrote the image of the
+    /// samples done (the message says which files and how many samples).
+    Interrupted(String),
 }
 
 impl CommandError {
-    /// The process exit status for this error: 2 for bad input, 1 otherwise.
+    /// The process exit status for this error: 2 for bad input, 130 (128 + SIGINT) for an
+    /// interrupted render, 1 otherwise.
     pub fn exit_code(&self) -> u8 {
         match self {
             Self::BadInput(_) => 2,
             Self::Failed(_) => 1,
+            Self::Interrupted(_) => INTERRUPTED_EXIT_STATUS,
         }
     }
 }
@@ -30,21 +37,38 @@ impl CommandError {
 impl fmt::Display for CommandError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::BadInput(message) | Self::Failed(message) => f.write_str(message),
+            Self::BadInput(message) | Self::Failed(message) | Self::Interrupted(message) => {
+                f.write_str(message)
+            }
         }
     }
 }
 
 impl std::error::Error for CommandError {}
 
-/// Runs one parsed subcommand, writing its normal output to `out`.
-pub fn run(command: &Command, out: &mut dyn Write) -> Result<(), CommandError> {
+/// Runs one parsed subcommand, writing its normal output to `out`. A render stops early at its
+/// next pass boundary once `stop` is raised.
+pub fn run(command: &Command, out: &mut dyn Write, stop: &StopSignal) -> Result<(), CommandError> {
     match command {
         Command::Diff(args) => {
             let report = DiffReport::of_files(&args.a, &args.b)?;
             writeln!(out, "{}", report.to_json_line())
                 .map_err(|e| CommandError::Failed(format!("cannot write the report: {e}")))
         }
-        Command::Render(args) => crate::render_command::run(args),
+        Command::Render(args) => crate::render_command::run(args, stop),
+        Command::Merge(args) => {
+            let merged = merge_files(&args.inputs)?;
+            merged
+                .image
+                .write_exr_with_spp(&args.out, merged.spp)
+                .map_err(|e| CommandError::Failed(e.to_string()))?;
+            if let Some(png) = &args.png {
+                merged
+                    .image
+                    .write_png(png)
+                    .map_err(|e| CommandError::Failed(e.to_string()))?;
+            }
+            Ok(())
+        }
     }
 }

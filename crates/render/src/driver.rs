@@ -7,6 +7,7 @@
 //! the number of threads, the tile size, the order in which tiles finish, and how the samples
 //! are split into passes.
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
@@ -16,35 +17,58 @@ use rayon::prelude::*;
 pub use crate::budget::{BudgetError, RenderBudget};
 use crate::film::{Film, PixelSum};
 use crate::progress::Progress;
+pub use crate::stop::StopSignal;
 use crate::tiles::{Tile, tile_size_for, tiles};
 
 /// How to drive a render, apart from its budget.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RenderOptions {
     /// Draw a progress bar on standard error (only ever drawn when it is a terminal).
     pub progress: bool,
     /// Tile edge in pixels; `None` picks one from the image size and thread count.
     pub tile_size: Option<u32>,
+    /// When raised, the render stops at the next pass boundary (after at least one pass) and
+    /// returns the samples done so far, with [`RenderOutput::interrupted`] set.
+    pub stop: Option<StopSignal>,
+    /// Samples rendered earlier to continue from: the film's sums, and sample indices, carry on
+    /// where they stopped, so the result has the same bits as one render of all the samples.
+    /// The budget's `max_spp` counts these samples too; its `max_seconds` counts only this run.
+    pub resume: Option<Arc<ResumePoint>>,
 }
 
 impl RenderOptions {
-    /// No progress bar, automatic tile size.
+    /// No progress bar, automatic tile size, no stop signal, a fresh start.
     pub fn quiet() -> Self {
         Self {
             progress: false,
             tile_size: None,
+            stop: None,
+            resume: None,
         }
     }
 }
 
 impl Default for RenderOptions {
-    /// A progress bar (on terminals), automatic tile size.
+    /// A progress bar (on terminals), automatic tile size, no stop signal, a fresh start.
     fn default() -> Self {
         Self {
             progress: true,
-            tile_size: None,
+            ..Self::quiet()
         }
     }
+}
+
+/// An earlier render's accumulated samples, to continue from (see [`RenderOptions::resume`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResumePoint {
+    /// The sums so far; its size must be the image's.
+    pub film: Film,
+    /// Samples per pixel already in `film`: the next sample index of every pixel.
+    pub spp: u32,
+    /// Passes those samples took.
+    pub passes: u32,
+    /// Samples left out of `film` as NaN or infinite so far.
+    pub non_finite: NonFiniteCounts,
 }
 
 /// Counts of sample values that were not finite; such samples are left out of the film
@@ -59,7 +83,7 @@ pub struct NonFiniteCounts {
 
 impl NonFiniteCounts {
     /// Adds another count to this one.
-    fn merge(&mut self, other: NonFiniteCounts) {
+    pub fn merge(&mut self, other: NonFiniteCounts) {
         self.nan += other.nan;
         self.inf += other.inf;
     }
@@ -70,11 +94,16 @@ impl NonFiniteCounts {
 pub struct RenderOutput {
     /// The accumulated samples.
     pub film: Film,
-    /// Samples per pixel rendered (including any that were left out as non-finite).
+    /// Samples per pixel rendered (including any that were left out as non-finite), counting
+    /// those of a [`ResumePoint`] continued from.
     pub spp: u32,
-    /// Number of passes rendered.
+    /// Number of passes rendered, counting those of a [`ResumePoint`].
     pub passes: u32,
-    /// Wall-clock seconds spent rendering.
+    /// Samples per pixel taken over from a [`ResumePoint`] (0 for a fresh start).
+    pub resumed_spp: u32,
+    /// Whether a [`StopSignal`] ended the render before its budget was spent.
+    pub interrupted: bool,
+    /// Wall-clock seconds spent rendering in this call.
     pub seconds: f64,
     /// Threads in the rayon pool the render ran on.
     pub threads: usize,
@@ -108,14 +137,48 @@ where
         .tile_size
         .unwrap_or_else(|| tile_size_for(width, height, threads));
     let tiles = tiles(width, height, tile_size);
-    let mut film = Film::new(width, height);
+    let (mut film, resumed_spp, mut passes, mut non_finite) = match options.resume.as_deref() {
+        None => (Film::new(width, height), 0, 0, NonFiniteCounts::default()),
+        Some(point) => {
+            let size = (point.film.width(), point.film.height());
+            if size != (width, height) {
+                return Err(BudgetError::ResumeSize {
+                    film: size,
+                    image: (width, height),
+                });
+            }
+            (
+                point.film.clone(),
+                point.spp,
+                point.passes,
+                point.non_finite,
+            )
+        }
+    };
+    // This run's share of the budget: the sample limit counts the resumed samples too, and the
+    // total never passes u32::MAX (sample indices are u32).
+    let run_budget = RenderBudget {
+        max_spp: Some(
+            budget
+                .max_spp
+                .unwrap_or(u32::MAX)
+                .saturating_sub(resumed_spp),
+        ),
+        ..*budget
+    };
     let progress = Progress::new(options.progress);
     let start = Instant::now();
-    let (mut spp, mut passes, mut last_pass) = (0u32, 0u32, 0u32);
-    let mut non_finite = NonFiniteCounts::default();
+    let (mut spp, mut last_pass) = (resumed_spp, 0u32);
+    let mut interrupted = false;
     loop {
-        let pass_spp = budget.next_pass_spp(spp, start.elapsed().as_secs_f64(), last_pass);
+        let pass_spp =
+            run_budget.next_pass_spp(spp - resumed_spp, start.elapsed().as_secs_f64(), last_pass);
         if pass_spp == 0 {
+            break;
+        }
+        let stop_requested = options.stop.as_ref().is_some_and(StopSignal::is_raised);
+        if stop_requested && spp > resumed_spp {
+            interrupted = true;
             break;
         }
         let report = |fraction_of_pass: f64| {
@@ -140,6 +203,8 @@ where
         film,
         spp,
         passes,
+        resumed_spp,
+        interrupted,
         seconds,
         threads,
         non_finite,

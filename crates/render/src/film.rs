@@ -76,6 +76,21 @@ impl Film {
         }
     }
 
+    /// A film of `width × height` pixels holding `pixels` (row-major, top row first); `None`
+    /// unless there are exactly `width * height` of them.
+    pub fn from_pixels(width: u32, height: u32, pixels: Vec<PixelSum>) -> Option<Self> {
+        (pixels.len() == width as usize * height as usize).then_some(Self {
+            width,
+            height,
+            pixels,
+        })
+    }
+
+    /// Every pixel's sums, row-major, top row first.
+    pub fn pixels(&self) -> &[PixelSum] {
+        &self.pixels
+    }
+
     /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width

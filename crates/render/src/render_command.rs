@@ -1,43 +1,77 @@
-//! `strata render`: load the scene, render it as planned, write the image and the stats.
+//! `strata render`: load the scene, render it as planned (continuing a saved state if asked),
+//! write the image, the saved state and the stats.
+
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
 
 use crate::cli::RenderArgs;
 use crate::commands::CommandError;
-use crate::driver::RenderOptions;
+use crate::driver::{RenderOptions, RenderOutput, ResumePoint};
 use crate::session::{film_filter, render_scene};
+use crate::state::{FORMAT, RenderState, StateHeader, VERSION, fnv1a_hex};
 use crate::stats::RenderStats;
-use crate::technique::plan;
-use std::time::Instant;
+use crate::stop::StopSignal;
+use crate::technique::{RenderPlan, plan};
+use scene::SceneDesc;
+use scene::limits::MAX_FILM_PIXELS;
 
-/// Runs `strata render` as `args` say.
-pub fn run(args: &RenderArgs) -> Result<(), CommandError> {
+/// Runs `strata render` as `args` say; stops early once `stop` is raised.
+pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
     let load_start = Instant::now();
-    let mut desc =
-        scene::parse_file(&args.scene, &[]).map_err(|e| CommandError::BadInput(e.to_string()))?;
+    let scene_bytes =
+        scene::read_scene_file(&args.scene).map_err(|e| CommandError::BadInput(e.to_string()))?;
+    let mut desc = scene::parse_bytes(&scene_bytes, &args.scene, &[])
+        .map_err(|e| CommandError::BadInput(e.to_string()))?;
     if let (Some(width), Some(height)) = (args.width, args.height) {
+        if u64::from(width) * u64::from(height) > MAX_FILM_PIXELS {
+            return Err(CommandError::BadInput(format!(
+                "--width {width} --height {height}: {width}x{height} pixels is more than the \
+                 supported {MAX_FILM_PIXELS}"
+            )));
+        }
         desc.film.width = width;
         desc.film.height = height;
     }
     let scene = scene::build(desc).map_err(|e| CommandError::BadInput(e.to_string()))?;
-    let plan = plan(args, &scene.desc, &scene.features);
+    let mut plan = plan(args, &scene.desc, &scene.features);
     let filter =
         film_filter(scene.desc.film.filter).map_err(|e| CommandError::BadInput(e.to_string()))?;
+    let identity = Identity {
+        scene_hash: fnv1a_hex(&scene_bytes),
+        settings: settings_text(&plan, &scene.desc),
+    };
+    let resume = match &args.resume {
+        Some(path) => Some(resume_point(path, &identity, &mut plan)?),
+        None => None,
+    };
     let load_seconds = load_start.elapsed().as_secs_f64();
 
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.map_or(0, |t| t as usize))
         .build()
         .map_err(|e| CommandError::Failed(format!("cannot start the render threads: {e}")))?;
+    let options = RenderOptions {
+        stop: Some(stop.clone()),
+        resume,
+        ..RenderOptions::default()
+    };
     let (output, counters) = pool
-        .install(|| render_scene(&scene, &plan, &filter, &RenderOptions::default()))
+        .install(|| render_scene(&scene, &plan, &filter, &options))
         .map_err(|e| CommandError::BadInput(format!("{}: {e}", args.scene.display())))?;
 
     let image = output.film.to_image();
     image
-        .write_exr(&args.out)
+        .write_exr_with_spp(&args.out, output.spp)
         .map_err(|e| CommandError::Failed(e.to_string()))?;
     if let Some(png) = &args.png {
         image
             .write_png(png)
+            .map_err(|e| CommandError::Failed(e.to_string()))?;
+    }
+    if let Some(path) = &args.state {
+        saved_state(&output, &plan, identity)
+            .write(path)
             .map_err(|e| CommandError::Failed(e.to_string()))?;
     }
     let mut stats = RenderStats::from_output(&output);
@@ -59,5 +93,84 @@ pub fn run(args: &RenderArgs) -> Result<(), CommandError> {
             .write_json(path)
             .map_err(|e| CommandError::Failed(e.to_string()))?;
     }
+    if output.interrupted {
+        return Err(CommandError::Interrupted(format!(
+            "interrupted: wrote '{}' with {} samples per pixel{}",
+            args.out.display(),
+            output.spp,
+            plan.budget
+                .max_spp
+                .map_or(String::new(), |max| format!(" of {max}"))
+        )));
+    }
     Ok(())
+}
+
+/// What a saved state must match to be resumed: the scene file and the sample-deciding settings.
+struct Identity {
+    scene_hash: String,
+    settings: String,
+}
+
+/// Everything besides the scene file that decides the value of sample `i` of a pixel: image
+/// size, filter, light transport, sampler and seed.
+fn settings_text(plan: &RenderPlan, desc: &SceneDesc) -> String {
+    format!(
+        "{}x{} {:?}; {:?}; sampler {:?} seed {}",
+        desc.film.width,
+        desc.film.height,
+        desc.film.filter,
+        plan.transport,
+        plan.sampler,
+        plan.seed
+    )
+}
+
+/// Reads the state at `path`, checks it belongs to this scene and these settings, and makes the
+/// plan continue its sampler layout.
+fn resume_point(
+    path: &Path,
+    identity: &Identity,
+    plan: &mut RenderPlan,
+) -> Result<Arc<ResumePoint>, CommandError> {
+    let state = RenderState::read(path).map_err(CommandError::BadInput)?;
+    let header = &state.header;
+    if header.scene_hash != identity.scene_hash {
+        return Err(CommandError::BadInput(format!(
+            "render state '{}' was saved for a different scene file (hash {}, the scene's is {})",
+            path.display(),
+            header.scene_hash,
+            identity.scene_hash
+        )));
+    }
+    if header.settings != identity.settings {
+        return Err(CommandError::BadInput(format!(
+            "render state '{}' was saved with other settings; give the same flags\n  saved: {}\n  now:   {}",
+            path.display(),
+            header.settings,
+            identity.settings
+        )));
+    }
+    plan.sampler_spp = header.sampler_spp;
+    Ok(Arc::new(state.resume_point()))
+}
+
+/// The state to save after `output`.
+fn saved_state(output: &RenderOutput, plan: &RenderPlan, identity: Identity) -> RenderState {
+    RenderState {
+        header: StateHeader {
+            format: FORMAT.to_string(),
+            version: VERSION,
+            width: output.film.width(),
+            height: output.film.height(),
+            spp: output.spp,
+            passes: output.passes,
+            nan_count: output.non_finite.nan,
+            inf_count: output.non_finite.inf,
+            sampler_spp: plan.sampler_spp,
+            scene_hash: identity.scene_hash,
+            settings: identity.settings,
+        },
+        film: output.film.clone(),
+    }
 }

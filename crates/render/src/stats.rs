@@ -14,8 +14,14 @@ pub struct RenderStats {
     pub seconds: f64,
     /// Wall-clock seconds spent loading and preparing the scene.
     pub load_seconds: f64,
-    /// Samples per pixel rendered.
+    /// Samples per pixel rendered, including any resumed from a saved state.
     pub spp: u32,
+    /// Samples per pixel taken over from a saved state (`--resume`); 0 for a fresh render.
+    #[serde(default)]
+    pub resumed_spp: u32,
+    /// Whether Ctrl-C stopped the render before its budget was spent.
+    #[serde(default)]
+    pub interrupted: bool,
     /// Passes the samples were rendered in.
     pub passes: u32,
     /// Image width in pixels.
@@ -43,6 +49,8 @@ impl RenderStats {
         Self {
             seconds: output.seconds,
             spp: output.spp,
+            resumed_spp: output.resumed_spp,
+            interrupted: output.interrupted,
             passes: output.passes,
             width: output.film.width(),
             height: output.film.height(),
@@ -79,6 +87,8 @@ mod tests {
             seconds: 1.5,
             load_seconds: 0.25,
             spp: 64,
+            resumed_spp: 16,
+            interrupted: true,
             passes: 3,
             width: 320,
             height: 240,
@@ -94,6 +104,8 @@ mod tests {
             "seconds",
             "load_seconds",
             "spp",
+            "resumed_spp",
+            "interrupted",
             "width",
             "height",
             "threads",
@@ -128,10 +140,9 @@ mod tests {
         )
         .unwrap();
         let stats = RenderStats::from_output(&output);
-        assert_eq!(
-            (stats.width, stats.height, stats.spp, stats.passes),
-            (3, 2, 4, 1)
-        );
+        assert_eq!((stats.width, stats.height, stats.spp), (3, 2, 4));
+        assert_eq!((stats.passes, stats.resumed_spp), (output.passes, 0));
+        assert!(!stats.interrupted);
         assert_eq!((stats.nan_count, stats.inf_count), (6, 0));
         assert_eq!(stats.threads, output.threads);
         assert_eq!(stats.seconds, output.seconds);

@@ -1,10 +1,13 @@
 //! Tests of the render driver: reproducibility across thread counts and pass splits, budgets
 //! that stop at pass boundaries, and exclusion of non-finite samples.
 
+use std::sync::Arc;
 use std::time::Duration;
 
 use glam::{UVec2, Vec3};
-use render::driver::{RenderBudget, RenderOptions, RenderOutput, render, render_pass};
+use render::driver::{
+    RenderBudget, RenderOptions, RenderOutput, ResumePoint, StopSignal, render, render_pass,
+};
 use render::film::Film;
 use render::tiles::tiles;
 
@@ -45,8 +48,8 @@ fn films_are_bit_identical_across_thread_counts_and_tile_sizes() {
         2,
         RenderBudget::spp(9),
         RenderOptions {
-            progress: false,
             tile_size: Some(5),
+            ..RenderOptions::quiet()
         },
     );
     assert_eq!((one.threads, two.threads), (1, 2));
@@ -203,4 +206,96 @@ fn non_finite_samples_are_counted_and_left_out() {
         Vec3::splat([0.0, 1.0, 2.0, 4.0, 5.0, 6.0].iter().sum::<f32>() / 6.0)
     );
     assert!(image.data.iter().all(|p| p.is_finite()));
+}
+
+#[test]
+fn resuming_continues_the_sample_indices_to_the_same_bits() {
+    let whole = render_on(2, RenderBudget::spp(8), RenderOptions::quiet());
+    let first = render_on(1, RenderBudget::spp(3), RenderOptions::quiet());
+    let resume = ResumePoint {
+        film: first.film,
+        spp: first.spp,
+        passes: first.passes,
+        non_finite: first.non_finite,
+    };
+    let options = RenderOptions {
+        resume: Some(Arc::new(resume)),
+        ..RenderOptions::quiet()
+    };
+    let resumed = render_on(2, RenderBudget::spp(8), options);
+    assert_eq!((resumed.spp, resumed.resumed_spp), (8, 3));
+    assert!(resumed.passes > first.passes);
+    assert_eq!(
+        resumed.film, whole.film,
+        "3 + 5 samples must equal 8 in one go"
+    );
+}
+
+#[test]
+fn resuming_a_film_of_another_size_is_refused() {
+    let options = RenderOptions {
+        resume: Some(Arc::new(ResumePoint {
+            film: Film::new(4, 4),
+            spp: 1,
+            passes: 1,
+            non_finite: Default::default(),
+        })),
+        ..RenderOptions::quiet()
+    };
+    let result = render(
+        5,
+        4,
+        &RenderBudget::spp(2),
+        &options,
+        || (),
+        |_, _, _| Vec3::ONE,
+    );
+    assert!(
+        result
+            .unwrap_err()
+            .to_string()
+            .contains("4x4 pixels but the image is 5x4")
+    );
+}
+
+#[test]
+fn a_stop_signal_ends_the_render_at_a_pass_boundary_with_whole_pixels() {
+    let stop = StopSignal::new();
+    let options = RenderOptions {
+        stop: Some(stop.clone()),
+        ..RenderOptions::quiet()
+    };
+    // The signal is raised while the first pass (1 sample per pixel) runs; that pass finishes.
+    let output = render(
+        6,
+        5,
+        &RenderBudget::spp(1000),
+        &options,
+        || (),
+        |_, _, index| {
+            if index == 0 {
+                stop.raise();
+            }
+            Vec3::splat(index as f32 + 1.0)
+        },
+    )
+    .unwrap();
+    assert!(output.interrupted);
+    assert_eq!((output.spp, output.passes), (1, 1));
+    assert_eq!(
+        output.film.total_samples(),
+        30,
+        "every pixel has its sample"
+    );
+    assert!(output.film.to_image().data.iter().all(|&p| p == Vec3::ONE));
+
+    let uninterrupted = render(
+        2,
+        2,
+        &RenderBudget::spp(3),
+        &RenderOptions::quiet(),
+        || (),
+        |_, _, _| Vec3::ONE,
+    );
+    assert!(!uninterrupted.unwrap().interrupted);
 }

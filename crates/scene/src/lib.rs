@@ -45,6 +45,7 @@ mod desc;
 mod error;
 mod features;
 mod ior;
+pub mod limits;
 mod loader;
 mod mesh;
 mod params;
@@ -71,6 +72,42 @@ pub use features::SceneFeatures;
 /// Relative mesh and include paths are resolved against the directory of the file that names them.
 pub fn parse_file(path: &Path, overrides: &[(String, String)]) -> Result<SceneDesc, LoadError> {
     loader::load(path, overrides)
+}
+
+/// Loads a scene from `text`, the contents of a Mitsuba 3 scene file, as [`parse_file`] would load
+/// it from `path`: `path` names the file in error messages, and relative mesh and include paths are
+/// resolved against its directory. `text` need not be valid UTF-8 (that is reported as an error).
+pub fn parse_bytes(
+    text: &[u8],
+    path: &Path,
+    overrides: &[(String, String)],
+) -> Result<SceneDesc, LoadError> {
+    loader::load_text(path, text, overrides)
+}
+
+/// Reads the scene file at `path` (at most [`limits::MAX_SCENE_FILE_BYTES`]) for
+/// [`parse_bytes`]; the error names the file.
+pub fn read_scene_file(path: &Path) -> Result<Vec<u8>, LoadError> {
+    limits::read_at_most(path, limits::MAX_SCENE_FILE_BYTES).map_err(|e| LoadError {
+        file: path.to_path_buf(),
+        line: 0,
+        column: 0,
+        element: String::new(),
+        message: format!("cannot read \"{}\": {e}", path.display()),
+    })
+}
+
+/// Parses the contents of a Wavefront OBJ file (the whole file is one mesh, in the file's own
+/// coordinates, not yet placed in the world). `flip_tex_coords` replaces v by 1 − v, Mitsuba's
+/// default for OBJ. Errors start with the 1-based line (`line N: …`).
+pub fn parse_obj(bytes: &[u8], flip_tex_coords: bool) -> Result<MeshDesc, String> {
+    mesh::obj::parse_obj(bytes, flip_tex_coords)
+}
+
+/// Parses the contents of a PLY file (ascii or binary), in the file's own coordinates. The header's
+/// element counts are checked against the data's length before anything is allocated.
+pub fn parse_ply(bytes: &[u8]) -> Result<MeshDesc, String> {
+    mesh::ply::parse_ply(bytes)
 }
 
 /// Loads the scene file at `path` (see [`parse_file`]) and builds it into a [`RenderScene`].

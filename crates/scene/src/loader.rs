@@ -11,7 +11,7 @@ use crate::plugins::integrator::integrator;
 use crate::plugins::sensor::{Camera, sensor};
 use crate::plugins::shape::shape;
 use crate::plugins::{child_loc, unexpected_child};
-use crate::xml::tree::{Child, ObjectNode, parse_scene_file};
+use crate::xml::tree::{Child, ObjectNode, parse_scene_file, parse_scene_text};
 
 /// What a `<scene>` may contain, for messages.
 const SCENE_CHILDREN: &str =
@@ -20,6 +20,16 @@ const SCENE_CHILDREN: &str =
 /// Loads the scene at `path` (see [`crate::parse_file`]).
 pub(crate) fn load(path: &Path, overrides: &[(String, String)]) -> Result<SceneDesc> {
     let root = parse_scene_file(path, overrides)?;
+    interpret_scene(path, &root)
+}
+
+/// Loads the scene whose file contents are `text`, as if read from `path`.
+pub(crate) fn load_text(
+    path: &Path,
+    text: &[u8],
+    overrides: &[(String, String)],
+) -> Result<SceneDesc> {
+    let root = parse_scene_text(path, text, overrides)?;
     interpret_scene(path, &root)
 }
 

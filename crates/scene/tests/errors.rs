@@ -540,3 +540,33 @@ fn errors_in_included_files_name_the_included_file() {
         "deeper than",
     );
 }
+
+#[test]
+fn hostile_xml_is_refused_with_bounded_work() {
+    // 40 parameters that each double the previous one would expand to 2^40 bytes.
+    let mut doubling = String::from("<default name=\"p40\" value=\"x\"/>\n");
+    for i in (0..40).rev() {
+        doubling.push_str(&format!(
+            "<default name=\"p{i}\" value=\"$p{}$p{}\"/>\n",
+            i + 1,
+            i + 1
+        ));
+    }
+    doubling.push_str("<shape type=\"$p0\"/>");
+    // p_i holds 2^(40-i) bytes and is defined on line 4 + 40 - i; p19 = $p20$p20 is the first
+    // to pass 1 MiB (2 × 2^20 bytes), on line 25.
+    expect(
+        "parameter_bomb.xml",
+        &wrap(&doubling),
+        25,
+        "<default>",
+        "grows beyond 1048576 bytes when $p20 is substituted",
+    );
+    expect(
+        "cut_in_attribute.xml",
+        "<scene version=\"3.0.0\">\n<shape type=\"cube\">\n<float name=\"x\" value=\"1",
+        3,
+        "<float>",
+        "the file ends inside <float> (opened at line 3, column 1)",
+    );
+}

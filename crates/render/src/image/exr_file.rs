@@ -4,6 +4,7 @@ use std::path::Path;
 
 use exr::compression::Compression;
 use exr::image::Blocks;
+use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::{
     Encoding, Image as ExrImage, Layer, LayerAttributes, LineOrder, ReadChannels, ReadLayers,
     SpecificChannels, WritableImage, read,
@@ -13,11 +14,20 @@ use glam::Vec3;
 use super::{Image, ImageError};
 use crate::atomic_write::write_atomically;
 
+/// Name of the custom EXR header attribute (an `int`) holding the samples per pixel of a render.
+pub const SPP_ATTRIBUTE: &str = "spp";
+
 impl Image {
     /// Reads the first RGB(A) layer of the OpenEXR file at `path`. Half, float and integer
     /// channels are all accepted and converted to `f32`; an alpha channel is ignored. Mitsuba's
     /// `hdrfilm` output (float16 by default, or float32) reads this way.
     pub fn read_exr(path: &Path) -> Result<Self, ImageError> {
+        Self::read_exr_with_spp(path).map(|(image, _)| image)
+    }
+
+    /// Reads an EXR file as [`Image::read_exr`] does, with the samples per pixel recorded in its
+    /// header's [`SPP_ATTRIBUTE`] (`None` when absent, or not a non-negative `int`).
+    pub fn read_exr_with_spp(path: &Path) -> Result<(Self, Option<u32>), ImageError> {
         let read_error = |reason: String| ImageError::Read {
             path: path.to_path_buf(),
             reason,
@@ -37,7 +47,16 @@ impl Image {
             .from_file(path)
             .map_err(|e| read_error(e.to_string()))?;
         // EXR sizes are stored as 32-bit signed integers, so the casts above cannot truncate.
-        Ok(image.layer_data.channel_data.pixels)
+        let spp = match image
+            .layer_data
+            .attributes
+            .other
+            .get(&Text::from(SPP_ATTRIBUTE))
+        {
+            Some(AttributeValue::I32(spp)) => u32::try_from(*spp).ok(),
+            _ => None,
+        };
+        Ok((image.layer_data.channel_data.pixels, spp))
     }
 
     /// Writes the image to `path` as OpenEXR with three float32 channels `R`, `G`, `B`, scan
@@ -45,6 +64,30 @@ impl Image {
     /// with `component_format` float32. The write is atomic (see
     /// [`crate::atomic_write::write_atomically`]).
     pub fn write_exr(&self, path: &Path) -> Result<(), ImageError> {
+        self.write_exr_attributes(path, LayerAttributes::default())
+    }
+
+    /// Writes the image as [`Image::write_exr`] does, recording `spp`, the samples per pixel
+    /// each pixel's value averages, in the header as the `int` attribute [`SPP_ATTRIBUTE`]
+    /// (`strata merge` weights images by it). Counts above `i32::MAX` are an error.
+    pub fn write_exr_with_spp(&self, path: &Path, spp: u32) -> Result<(), ImageError> {
+        let spp = i32::try_from(spp).map_err(|_| ImageError::Write {
+            path: path.to_path_buf(),
+            reason: format!("{spp} samples per pixel do not fit the EXR header's int"),
+        })?;
+        let mut attributes = LayerAttributes::default();
+        attributes
+            .other
+            .insert(Text::from(SPP_ATTRIBUTE), AttributeValue::I32(spp));
+        self.write_exr_attributes(path, attributes)
+    }
+
+    /// Writes the image with these layer attributes (see [`Image::write_exr`]).
+    fn write_exr_attributes(
+        &self,
+        path: &Path,
+        attributes: LayerAttributes,
+    ) -> Result<(), ImageError> {
         self.check_dimensions()?;
         let width = self.width as usize;
         let channels = SpecificChannels::rgb(|position: exr::math::Vec2<usize>| {
@@ -58,7 +101,7 @@ impl Image {
         };
         let layer = Layer::new(
             (width, self.height as usize),
-            LayerAttributes::default(),
+            attributes,
             encoding,
             channels,
         );
@@ -96,6 +139,27 @@ mod tests {
         let image = sample_image();
         image.write_exr(&path).unwrap();
         assert_eq!(Image::read_exr(&path).unwrap(), image);
+    }
+
+    #[test]
+    fn the_sample_count_round_trips_through_the_header() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.exr");
+        let image = sample_image();
+        image.write_exr_with_spp(&path, 37).unwrap();
+        assert_eq!(
+            Image::read_exr_with_spp(&path).unwrap(),
+            (image.clone(), Some(37))
+        );
+        let meta = exr::meta::MetaData::read_from_file(&path, false).unwrap();
+        assert_eq!(
+            meta.headers[0].own_attributes.other.get(&Text::from("spp")),
+            Some(&AttributeValue::I32(37)),
+            "an int attribute named spp, readable by any EXR tool"
+        );
+        image.write_exr(&path).unwrap();
+        assert_eq!(Image::read_exr_with_spp(&path).unwrap().1, None);
+        assert!(image.write_exr_with_spp(&path, u32::MAX).is_err());
     }
 
     #[test]

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 
+pub use exr_file::SPP_ATTRIBUTE;
 pub use png_file::linear_to_srgb8;
 
 /// A linear RGB image stored row-major, top row first: pixel `(x, y)` is

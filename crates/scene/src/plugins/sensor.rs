@@ -7,13 +7,12 @@ use crate::desc::{
     FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
 };
 use crate::error::Result;
+use crate::limits::{MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
 use crate::params::Params;
 use crate::xml::tree::{Child, ObjectNode};
 
 /// Largest accepted image side, pixels.
 const MAX_SIDE: i64 = 1 << 16;
-/// Largest accepted pixel count.
-const MAX_PIXELS: u64 = 1 << 28;
 
 /// A sensor together with the film and sampler it holds.
 pub(crate) struct Camera {
@@ -210,9 +209,9 @@ fn film_desc(node: &ObjectNode) -> Result<FilmDesc> {
     let mut params = Params::new(node);
     let width = params.integer_in("width", 768, 1, MAX_SIDE)? as u32;
     let height = params.integer_in("height", 576, 1, MAX_SIDE)? as u32;
-    if u64::from(width) * u64::from(height) > MAX_PIXELS {
+    if u64::from(width) * u64::from(height) > MAX_FILM_PIXELS {
         return Err(node.loc.error(format!(
-            "{width}x{height} pixels is more than the supported {MAX_PIXELS}"
+            "{width}x{height} pixels is more than the supported {MAX_FILM_PIXELS}"
         )));
     }
     // Output encodings that do not change the rendered values: Strata always writes float32 RGB.
@@ -298,7 +297,7 @@ fn sampler_desc(node: &ObjectNode) -> Result<SamplerDesc> {
     }
     let desc = SamplerDesc {
         kind,
-        sample_count: params.integer_in("sample_count", 4, 1, i64::from(u32::MAX))? as u32,
+        sample_count: params.integer_in("sample_count", 4, 1, i64::from(MAX_SAMPLE_COUNT))? as u32,
         seed: params.integer_in("seed", 0, 0, i64::from(u32::MAX))? as u32,
     };
     params.finish()?;

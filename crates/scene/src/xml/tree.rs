@@ -14,6 +14,7 @@ use super::attrs::Attrs;
 use super::transform::{TRANSFORM_OPS, operation_matrix};
 use super::values::{parse_boolean, parse_float, parse_integer, parse_vec3_or_scalar, tokenize};
 use crate::error::{LoadError, Loc, Result};
+use crate::limits::{MAX_SCENE_FILE_BYTES, read_at_most};
 
 /// Tags that create plugin objects.
 const OBJECT_TAGS: [&str; 13] = [
@@ -50,6 +51,9 @@ const OTHER_TAGS: [&str; 3] = ["ref", "default", "include"];
 
 /// How deeply `<include>` may nest before it is taken for a cycle.
 const MAX_INCLUDE_DEPTH: usize = 16;
+
+/// Longest attribute value after `$name` substitution, bytes.
+const MAX_ATTRIBUTE_BYTES: usize = 1 << 20;
 
 /// How deeply objects may nest (real scenes use at most about 5 levels); guards the recursion.
 const MAX_OBJECT_DEPTH: usize = 32;
@@ -135,6 +139,25 @@ struct Param {
 
 /// Parses the scene file at `path` with the given `$name` overrides into its root `<scene>` node.
 pub(crate) fn parse_scene_file(path: &Path, overrides: &[(String, String)]) -> Result<ObjectNode> {
+    parse_scene(path, None, overrides)
+}
+
+/// Parses `text` as the scene file at `path` (which names it in messages and resolves its
+/// relative paths) with the given `$name` overrides into its root `<scene>` node.
+pub(crate) fn parse_scene_text(
+    path: &Path,
+    text: &[u8],
+    overrides: &[(String, String)],
+) -> Result<ObjectNode> {
+    parse_scene(path, Some(text), overrides)
+}
+
+/// Parses the scene at `path`, read from disk unless its `text` is given.
+fn parse_scene(
+    path: &Path,
+    text: Option<&[u8]>,
+    overrides: &[(String, String)],
+) -> Result<ObjectNode> {
     let mut builder = Builder {
         params: overrides
             .iter()
@@ -149,7 +172,10 @@ pub(crate) fn parse_scene_file(path: &Path, overrides: &[(String, String)]) -> R
     };
     builder.sort_params();
     let file_loc = Loc::file_only(path);
-    let root = builder.parse_file(path, 0, &file_loc)?;
+    let root = match text {
+        Some(text) => builder.parse_text(path, text.to_vec(), 0)?,
+        None => builder.parse_file(path, 0, &file_loc)?,
+    };
     if root.tag != "scene" {
         return Err(root.loc.error(format!(
             "the root element must be <scene>, not <{}>",
@@ -180,10 +206,24 @@ impl Builder {
     /// Reads and parses one XML file and returns its root object. `origin` locates the element that
     /// asked for the file (the `<include>`, or the file itself for the scene).
     fn parse_file(&mut self, path: &Path, depth: usize, origin: &Loc) -> Result<ObjectNode> {
-        let text = std::fs::read(path)
+        let text = read_at_most(path, MAX_SCENE_FILE_BYTES)
             .map_err(|e| origin.error(format!("cannot read \"{}\": {e}", path.display())))?;
-        let text = String::from_utf8(text)
-            .map_err(|_| origin.error(format!("\"{}\" is not valid UTF-8", path.display())))?;
+        self.parse_text(path, text, depth)
+    }
+
+    /// Parses `text`, the contents of the XML file at `path`, and returns its root object.
+    fn parse_text(&mut self, path: &Path, text: Vec<u8>, depth: usize) -> Result<ObjectNode> {
+        let text = String::from_utf8(text).map_err(|e| {
+            let valid = String::from_utf8_lossy(&e.as_bytes()[..e.utf8_error().valid_up_to()]);
+            let pos = end_position(&valid);
+            LoadError {
+                file: path.to_path_buf(),
+                line: pos.row,
+                column: pos.col,
+                element: String::new(),
+                message: "the file is not valid UTF-8 text (is it an XML scene?)".to_string(),
+            }
+        })?;
         let file = Arc::new(path.to_path_buf());
         let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
         let doc = roxmltree::Document::parse(text).map_err(|e| syntax_error(&file, text, &e))?;
@@ -221,6 +261,8 @@ impl Builder {
     }
 
     /// Replaces `$name` by parameter values, leaves `\$` as a literal `$`, and rejects undefined names.
+    /// Parameters are replaced one after another, longest name first, each in one linear pass;
+    /// a value growing past [`MAX_ATTRIBUTE_BYTES`] (parameters that double each other) is an error.
     fn substitute(&mut self, raw: &str, loc: &Loc) -> Result<String> {
         if !raw.contains('$') {
             return Ok(raw.to_string());
@@ -228,17 +270,28 @@ impl Builder {
         let mut value = raw.to_string();
         for param in &mut self.params {
             let key = format!("${}", param.name);
-            let mut pos = 0;
-            while let Some(found) = value[pos..].find(&key) {
-                let at = pos + found;
-                if at > 0 && value.as_bytes()[at - 1] == b'\\' {
-                    pos = at + key.len();
-                } else {
-                    value.replace_range(at..at + key.len(), &param.value);
-                    param.used = true;
-                    pos = at + param.value.len();
+            if !value.contains(&key) {
+                continue;
+            }
+            let mut replaced = String::with_capacity(value.len());
+            let mut rest = value.as_str();
+            while let Some(at) = rest.find(&key) {
+                let before = &rest[..at];
+                let escaped = before.ends_with('\\') || (at == 0 && replaced.ends_with('\\'));
+                replaced.push_str(&rest[..at]);
+                replaced.push_str(if escaped { &key } else { &param.value });
+                param.used |= !escaped;
+                rest = &rest[at + key.len()..];
+                if replaced.len() + rest.len() > MAX_ATTRIBUTE_BYTES {
+                    return Err(loc.error(format!(
+                        "the attribute grows beyond {MAX_ATTRIBUTE_BYTES} bytes when ${} is \
+                         substituted (parameters that expand each other?)",
+                        param.name
+                    )));
                 }
             }
+            replaced.push_str(rest);
+            value = replaced;
         }
         let bytes = value.as_bytes();
         for (i, &b) in bytes.iter().enumerate() {
@@ -583,19 +636,38 @@ fn check_version(version: &str, loc: &Loc) -> Result<()> {
     }
 }
 
-/// An XML syntax error at its position.
+/// An XML syntax error at its position. A file that ends too early is reported at its end,
+/// naming the innermost element still open and where it was opened.
 fn syntax_error(file: &Arc<PathBuf>, text: &str, error: &roxmltree::Error) -> LoadError {
-    let pos = match error {
-        roxmltree::Error::UnclosedRootNode => {
-            let line = text.lines().count().max(1) as u32;
-            let column = text
-                .lines()
-                .last()
-                .map_or(1, |l| l.chars().count() as u32 + 1);
-            roxmltree::TextPos::new(line, column)
-        }
-        _ => error.pos(),
-    };
+    let truncated = matches!(
+        error,
+        roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream
+    );
+    if truncated {
+        // The end of the last line that has text.
+        let end = end_position(text.trim_end_matches(['\r', '\n']));
+        let (element, message) = match innermost_open_element(text) {
+            Some((name, offset)) => {
+                let opened = end_position(&text[..offset]);
+                (
+                    format!("<{name}>"),
+                    format!(
+                        "XML syntax error: the file ends inside <{name}> (opened at line {}, column {})",
+                        opened.row, opened.col
+                    ),
+                )
+            }
+            None => (String::new(), format!("XML syntax error: {error}")),
+        };
+        return LoadError {
+            file: file.as_ref().clone(),
+            line: end.row,
+            column: end.col,
+            element,
+            message,
+        };
+    }
+    let pos = error.pos();
     LoadError {
         file: file.as_ref().clone(),
         line: pos.row,
@@ -603,4 +675,48 @@ fn syntax_error(file: &Arc<PathBuf>, text: &str, error: &roxmltree::Error) -> Lo
         element: String::new(),
         message: format!("XML syntax error: {error}"),
     }
+}
+
+/// The 1-based line and column just after the end of `text`.
+fn end_position(text: &str) -> roxmltree::TextPos {
+    let line = text.matches('\n').count() + 1;
+    let last_line = text.rsplit('\n').next().unwrap_or_default();
+    roxmltree::TextPos::new(
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(last_line.chars().count() + 1).unwrap_or(u32::MAX),
+    )
+}
+
+/// The innermost element still open at the end of `text` and the byte offset of its `<`: a light
+/// scan of start and end tags, skipping comments, declarations and processing instructions, for
+/// messages about truncated files.
+fn innermost_open_element(text: &str) -> Option<(&str, usize)> {
+    let mut open: Vec<(&str, usize)> = Vec::new();
+    let mut i = 0;
+    while let Some(found) = text[i..].find('<') {
+        let start = i + found;
+        let rest = &text[start + 1..];
+        let terminator = if rest.starts_with("!--") { "-->" } else { ">" };
+        let end = rest
+            .find(terminator)
+            .map(|e| start + 1 + e + terminator.len());
+        if !(rest.starts_with('!') || rest.starts_with('?')) {
+            let closing = rest.starts_with('/');
+            let name_text = if closing { &rest[1..] } else { rest };
+            let name_len = name_text
+                .find(|c: char| c.is_whitespace() || c == '/' || c == '>')
+                .unwrap_or(name_text.len());
+            let self_closing = end.is_some_and(|e| text[..e - 1].ends_with('/'));
+            if closing {
+                open.pop();
+            } else if !self_closing && name_len > 0 {
+                open.push((&name_text[..name_len], start));
+            }
+        }
+        match end {
+            Some(e) => i = e,
+            None => break,
+        }
+    }
+    open.pop()
 }

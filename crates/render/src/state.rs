@@ -1,0 +1,278 @@
+//! Saved render state (`strata render --state PATH`, continued by `--resume PATH`): the film's
+//! per-pixel sums, the samples done, and what they were rendered with.
+//!
+//! The file is one line of JSON (a [`StateHeader`]) and a newline, followed by every pixel's
+//! sums, row-major, top row first: `sum` r, g, b and `sum_sq` r, g, b as little-endian `f64`,
+//! then `count` as a little-endian `u32` ([`PIXEL_BYTES`] bytes per pixel). Resuming adds new
+//! samples to exactly these sums, so a render stopped and resumed any number of times gives the
+//! same bits as one uninterrupted render.
+
+use std::io::{BufRead, BufReader, Read};
+use std::path::Path;
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::atomic_write::{WriteError, write_bytes_atomically};
+use crate::driver::{NonFiniteCounts, ResumePoint};
+use crate::film::{Film, PixelSum};
+
+/// What identifies the state format in [`StateHeader::format`].
+pub const FORMAT: &str = "strata-render-state";
+
+/// The state format's version in [`StateHeader::version`].
+pub const VERSION: u32 = 1;
+
+/// Bytes per pixel after the header: six `f64` sums and a `u32` count.
+pub const PIXEL_BYTES: usize = 6 * 8 + 4;
+
+/// Longest header line accepted when reading, bytes.
+const MAX_HEADER_BYTES: usize = 1 << 16;
+
+/// The JSON line that opens a state file.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct StateHeader {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Always [`VERSION`].
+    pub version: u32,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel in the sums (the next sample index of every pixel).
+    pub spp: u32,
+    /// Passes those samples took.
+    pub passes: u32,
+    /// Samples left out as NaN.
+    pub nan_count: u64,
+    /// Samples left out as infinite.
+    pub inf_count: u64,
+    /// Sample count the sampler's pattern is laid out for; a resumed render keeps it.
+    pub sampler_spp: u32,
+    /// FNV-1a hash (hex) of the scene file's bytes.
+    pub scene_hash: String,
+    /// The render settings that decide every sample's value (transport, sampler, seed, film
+    /// size and filter), in a readable form; a resumed render must have the same.
+    pub settings: String,
+}
+
+/// A render's saved state: its header and its film.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderState {
+    /// Counts and settings.
+    pub header: StateHeader,
+    /// The per-pixel sums.
+    pub film: Film,
+}
+
+impl RenderState {
+    /// The point a resumed render continues from.
+    pub fn resume_point(&self) -> ResumePoint {
+        ResumePoint {
+            film: self.film.clone(),
+            spp: self.header.spp,
+            passes: self.header.passes,
+            non_finite: NonFiniteCounts {
+                nan: self.header.nan_count,
+                inf: self.header.inf_count,
+            },
+        }
+    }
+
+    /// The file's bytes: header line, newline, pixel sums.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        // A struct of numbers and strings always serialises.
+        let mut bytes = serde_json::to_vec(&self.header).expect("StateHeader serialises to JSON");
+        bytes.push(b'\n');
+        bytes.reserve(self.film.pixels().len() * PIXEL_BYTES);
+        for pixel in self.film.pixels() {
+            for v in pixel
+                .sum
+                .to_array()
+                .into_iter()
+                .chain(pixel.sum_sq.to_array())
+            {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+            bytes.extend_from_slice(&pixel.count.to_le_bytes());
+        }
+        bytes
+    }
+
+    /// Writes the state to `path` atomically: a reader sees the old file or the whole new one.
+    pub fn write(&self, path: &Path) -> Result<(), WriteError> {
+        write_bytes_atomically(path, &self.to_bytes())
+    }
+
+    /// Parses a state file's bytes. The pixel data must have exactly the size the header's width
+    /// and height call for, which is checked before anything is allocated for it.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
+        let end = bytes
+            .iter()
+            .take(MAX_HEADER_BYTES)
+            .position(|&b| b == b'\n')
+            .ok_or("not a Strata render state (no header line)")?;
+        let header = parse_header(&bytes[..end])?;
+        decode(header, &bytes[end + 1..])
+    }
+
+    /// Reads the state file at `path`, reading no more than its header says it holds; errors
+    /// name the file.
+    pub fn read(path: &Path) -> Result<Self, String> {
+        let named = |e: String| format!("render state '{}': {e}", path.display());
+        let file = std::fs::File::open(path)
+            .map_err(|e| format!("cannot read render state '{}': {e}", path.display()))?;
+        let mut reader = BufReader::new(file);
+        let mut line = Vec::new();
+        (&mut reader)
+            .take(MAX_HEADER_BYTES as u64)
+            .read_until(b'\n', &mut line)
+            .map_err(|e| named(e.to_string()))?;
+        if line.pop() != Some(b'\n') {
+            return Err(named(
+                "not a Strata render state (no header line)".to_string(),
+            ));
+        }
+        let header = parse_header(&line).map_err(named)?;
+        let mut data = Vec::new();
+        reader
+            .take(data_bytes(&header) as u64 + 1)
+            .read_to_end(&mut data)
+            .map_err(|e| named(e.to_string()))?;
+        decode(header, &data).map_err(named)
+    }
+}
+
+/// Parses and checks the header line (without its newline).
+fn parse_header(line: &[u8]) -> Result<StateHeader, String> {
+    let header: StateHeader = serde_json::from_slice(line)
+        .map_err(|e| format!("not a Strata render state (bad header: {e})"))?;
+    if header.format != FORMAT || header.version != VERSION {
+        return Err(format!(
+            "not a Strata render state of version {VERSION} (format \"{}\", version {})",
+            header.format, header.version
+        ));
+    }
+    let pixels = u64::from(header.width) * u64::from(header.height);
+    if pixels == 0 || pixels > scene::limits::MAX_FILM_PIXELS {
+        return Err(format!(
+            "a {}x{} image is outside the supported sizes",
+            header.width, header.height
+        ));
+    }
+    Ok(header)
+}
+
+/// Bytes of pixel sums a checked `header` calls for.
+fn data_bytes(header: &StateHeader) -> usize {
+    header.width as usize * header.height as usize * PIXEL_BYTES
+}
+
+/// The state of `header` with the pixel sums in `data`, which must have exactly their size.
+fn decode(header: StateHeader, data: &[u8]) -> Result<RenderState, String> {
+    let expected = data_bytes(&header);
+    if data.len() != expected {
+        return Err(format!(
+            "truncated or corrupt: {} bytes of pixel sums where a {}x{} image needs {expected}",
+            data.len(),
+            header.width,
+            header.height
+        ));
+    }
+    let pixels = data.chunks_exact(PIXEL_BYTES).map(read_pixel).collect();
+    let film = Film::from_pixels(header.width, header.height, pixels)
+        .ok_or("pixel count does not match the size")?;
+    Ok(RenderState { header, film })
+}
+
+/// One pixel's sums from its [`PIXEL_BYTES`] bytes.
+fn read_pixel(bytes: &[u8]) -> PixelSum {
+    let f = |i: usize| {
+        let mut b = [0u8; 8];
+        b.copy_from_slice(&bytes[8 * i..8 * i + 8]);
+        f64::from_le_bytes(b)
+    };
+    let mut count = [0u8; 4];
+    count.copy_from_slice(&bytes[48..52]);
+    PixelSum {
+        sum: DVec3::new(f(0), f(1), f(2)),
+        sum_sq: DVec3::new(f(3), f(4), f(5)),
+        count: u32::from_le_bytes(count),
+    }
+}
+
+/// The 64-bit FNV-1a hash of `bytes`, as 16 hex digits (stable across platforms and versions).
+pub fn fnv1a_hex(bytes: &[u8]) -> String {
+    let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    });
+    format!("{hash:016x}")
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{UVec2, Vec3};
+
+    use super::*;
+
+    fn state() -> RenderState {
+        let mut film = Film::new(3, 2);
+        film.add(UVec2::new(1, 0), Vec3::new(0.1, 2.5, 1e-30));
+        film.add(UVec2::new(1, 0), Vec3::new(3.0, -0.0, 7.0));
+        film.add(UVec2::new(2, 1), Vec3::splat(1.0 / 3.0));
+        RenderState {
+            header: StateHeader {
+                format: FORMAT.to_string(),
+                version: VERSION,
+                width: 3,
+                height: 2,
+                spp: 2,
+                passes: 2,
+                nan_count: 1,
+                inf_count: 0,
+                sampler_spp: 16,
+                scene_hash: fnv1a_hex(b"<scene/>"),
+                settings: "mis".to_string(),
+            },
+            film,
+        }
+    }
+
+    #[test]
+    fn round_trips_every_bit() {
+        let state = state();
+        assert_eq!(RenderState::from_bytes(&state.to_bytes()).unwrap(), state);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("s.state");
+        state.write(&path).unwrap();
+        assert_eq!(RenderState::read(&path).unwrap(), state);
+    }
+
+    #[test]
+    fn corrupt_files_are_refused_without_allocating() {
+        let bytes = state().to_bytes();
+        let truncated = RenderState::from_bytes(&bytes[..bytes.len() - 1]).unwrap_err();
+        assert!(truncated.contains("truncated"), "{truncated}");
+        assert!(RenderState::from_bytes(b"garbage").is_err());
+        assert!(RenderState::from_bytes(b"{}\n").is_err());
+        let huge = String::from_utf8_lossy(&bytes)
+            .replacen("\"width\":3", "\"width\":4000000000", 1)
+            .into_bytes();
+        let message = RenderState::from_bytes(&huge).unwrap_err();
+        assert!(message.contains("outside the supported"), "{message}");
+        let other = String::from_utf8_lossy(&bytes)
+            .replacen(FORMAT, "something-else", 1)
+            .into_bytes();
+        assert!(RenderState::from_bytes(&other).is_err());
+        let missing = RenderState::read(Path::new("/nonexistent/x.state")).unwrap_err();
+        assert!(missing.contains("x.state"), "{missing}");
+    }
+
+    #[test]
+    fn fnv1a_matches_the_published_test_vectors() {
+        assert_eq!(fnv1a_hex(b""), "cbf29ce484222325");
+        assert_eq!(fnv1a_hex(b"a"), "af63dc4c8601ec8c");
+        assert_eq!(fnv1a_hex(b"foobar"), "85944171f73967e8");
+    }
+}

@@ -1,0 +1,167 @@
+//! Interruption and resumption of `strata render`: Ctrl-C (SIGINT) stops at a pass boundary and
+//! writes a complete image, its stats and its state; a second Ctrl-C quits without writing;
+//! `--resume` continues a saved state to exactly the bits of one uninterrupted render.
+
+mod binary;
+
+use std::time::Duration;
+
+use binary::{
+    arg, interrupt, read_exr, read_stats, spawn_strata, strata, strata_ok, suite_scene,
+    wait_at_most,
+};
+
+/// Longest an interrupted render may take to stop and write (passes last about 1 s).
+const STOP_LIMIT: Duration = Duration::from_secs(30);
+
+#[test]
+fn ctrl_c_writes_a_complete_image_of_the_samples_done_and_resume_finishes_it_exactly() {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, stats, state) = (
+        dir.path().join("cut.exr"),
+        dir.path().join("cut.json"),
+        dir.path().join("cut.state"),
+    );
+    let scene = suite_scene("cbox.xml");
+    let common = [
+        "--width",
+        "24",
+        "--height",
+        "16",
+        "--seed",
+        "5",
+        "--threads",
+        "2",
+    ];
+    let mut args = vec![
+        "render",
+        arg(&scene),
+        "--out",
+        arg(&out),
+        "--spp",
+        "16777216",
+    ];
+    args.extend(["--stats", arg(&stats), "--state", arg(&state)]);
+    args.extend(common);
+    let child = spawn_strata(&args);
+    std::thread::sleep(Duration::from_millis(1500));
+    interrupt(&child);
+    let (status, stderr) = wait_at_most(child, STOP_LIMIT);
+    assert_eq!(status, Some(130), "interrupted renders exit 130: {stderr}");
+    assert!(stderr.contains("interrupted: wrote"), "{stderr}");
+
+    let (image, spp) = read_exr(&out);
+    let spp = spp.expect("the EXR header records the samples per pixel");
+    assert!((1..16_777_216).contains(&spp), "{spp} spp");
+    assert_eq!((image.width, image.height), (24, 16));
+    assert!(image.data.iter().all(|p| p.is_finite()));
+    let stats = read_stats(&stats);
+    assert!(stats.interrupted);
+    assert_eq!(stats.spp, spp, "stats and header agree");
+
+    // Resume to a few more samples than were done; compare with one render of that many.
+    let total = (spp + 3).to_string();
+    let (resumed, whole) = (dir.path().join("resumed.exr"), dir.path().join("whole.exr"));
+    let mut resume_args = vec![
+        "render",
+        arg(&scene),
+        "--out",
+        arg(&resumed),
+        "--spp",
+        &total,
+    ];
+    resume_args.extend(["--resume", arg(&state)]);
+    resume_args.extend(common);
+    strata_ok(&resume_args);
+    let mut whole_args = vec!["render", arg(&scene), "--out", arg(&whole), "--spp", &total];
+    whole_args.extend(common);
+    strata_ok(&whole_args);
+    assert_eq!(
+        std::fs::read(&resumed).unwrap(),
+        std::fs::read(&whole).unwrap(),
+        "{spp} spp interrupted + resumed to {total} must equal {total} in one go"
+    );
+}
+
+#[test]
+fn a_second_ctrl_c_quits_at_once_without_writing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("never.exr");
+    let scene = suite_scene("cbox.xml");
+    // One sample per pixel of 2048² on one thread takes seconds, so both signals arrive
+    // during the first pass, which an interrupted render always finishes.
+    let child = spawn_strata(&[
+        "render",
+        arg(&scene),
+        "--out",
+        arg(&out),
+        "--spp",
+        "64",
+        "--width",
+        "2048",
+        "--height",
+        "2048",
+        "--threads",
+        "1",
+    ]);
+    std::thread::sleep(Duration::from_millis(500));
+    interrupt(&child);
+    std::thread::sleep(Duration::from_millis(200));
+    interrupt(&child);
+    let (status, stderr) = wait_at_most(child, Duration::from_secs(5));
+    assert_eq!(status, Some(130), "{stderr}");
+    assert!(!out.exists(), "the second Ctrl-C must not write the image");
+}
+
+#[test]
+fn a_time_budget_records_the_samples_done() {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, stats) = (dir.path().join("t.exr"), dir.path().join("t.json"));
+    let scene = suite_scene("cbox.xml");
+    strata_ok(&[
+        "render",
+        arg(&scene),
+        "--out",
+        arg(&out),
+        "--time",
+        "0.3",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "--stats",
+        arg(&stats),
+    ]);
+    let stats = read_stats(&stats);
+    assert!(stats.spp >= 1 && !stats.interrupted);
+    assert_eq!(read_exr(&out).1, Some(stats.spp));
+}
+
+#[test]
+fn resume_refuses_another_scene_or_other_settings() {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, state) = (dir.path().join("a.exr"), dir.path().join("a.state"));
+    let (cbox, glass) = (suite_scene("cbox.xml"), suite_scene("cbox-glass.xml"));
+    let size = ["--width", "8", "--height", "8"];
+    let mut args = vec!["render", arg(&cbox), "--out", arg(&out), "--spp", "2"];
+    args.extend(["--state", arg(&state)]);
+    args.extend(size);
+    strata_ok(&args);
+    for (scene, extra, expected) in [
+        (&glass, &[][..], "different scene file"),
+        (&cbox, &["--seed", "9"][..], "other settings"),
+        (&cbox, &["--integrator", "reference"][..], "other settings"),
+    ] {
+        let mut args = vec!["render", arg(scene), "--out", arg(&out), "--spp", "4"];
+        args.extend(["--resume", arg(&state)]);
+        args.extend(size);
+        args.extend(extra);
+        let output = strata(&args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{extra:?}: {stderr}");
+        assert!(
+            stderr.contains(expected) && stderr.contains("a.state"),
+            "{stderr}"
+        );
+    }
+}
