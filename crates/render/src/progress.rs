@@ -52,6 +52,14 @@ impl Progress {
         }
     }
 
+    /// Prints `line` on standard error, above the bar when one is drawn.
+    pub fn println(&self, line: String) {
+        match &self.bar {
+            Some(bar) => bar.println(line),
+            None => eprintln!("{line}"),
+        }
+    }
+
     /// Removes the bar from the terminal.
     pub fn finish(&self) {
         if let Some(bar) = &self.bar {

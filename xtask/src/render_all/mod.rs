@@ -2,6 +2,7 @@
 //! suite, and every configuration of the technique ladder rendered at a series of time budgets
 //! and measured against them.
 
+mod error_map;
 mod ladder;
 mod plot;
 mod refs;

@@ -1,12 +1,14 @@
 //! `cargo xtask render-all`: every configuration of each scene's ladder at a geometric series of
 //! time budgets, measured against the stored reference.
 
+use super::error_map::error_map;
 use super::ladder::{Configuration, ladder};
 use super::report::{Measurement, SceneReport, write_report};
 use super::{SuiteScene, parse_scene_list, reference_path, scene_files};
 use render::driver::{RenderBudget, RenderOptions};
 use render::image::Image;
 use render::metrics::{relmse, rmse};
+use render::progress::Progress;
 use render::session::{film_filter, render_scene};
 use render::technique::{RenderPlan, TIME_BUDGET_NOMINAL_SPP};
 use std::path::Path;
@@ -38,8 +40,10 @@ pub fn render_all(root: &Path, args: &[String]) -> Result<bool, String> {
     }
     let out_dir = root.join("target/report");
     let mut reports = Vec::new();
-    for file in scene_files(root, &only)? {
-        let suite = SuiteScene::load(&file)?;
+    let files = scene_files(root, &only)?;
+    let progress = Progress::new(true);
+    for (scene_index, file) in files.iter().enumerate() {
+        let suite = SuiteScene::load(file)?;
         let reference_file = reference_path(root, &suite.name);
         let reference = Image::read_exr(&reference_file).map_err(|e| {
             format!(
@@ -54,20 +58,40 @@ pub fn render_all(root: &Path, args: &[String]) -> Result<bool, String> {
             .map_err(|e| e.to_string())?;
         let configurations = ladder(&suite.transport(), &suite.scene.features);
         let mut measurements = Vec::new();
-        for configuration in &configurations {
+        for (c, configuration) in configurations.iter().enumerate() {
             for (i, &seconds) in budgets.iter().enumerate() {
+                progress.set_message(format!("{} / {}", suite.name, configuration.name));
                 let (measurement, image) =
                     measure(&suite, configuration, &reference, seconds, seed(i))?;
                 if i + 1 == budgets.len() {
+                    let name = &configuration.name;
                     image
-                        .write_png(&scene_dir.join(format!("{}.png", configuration.name)))
+                        .write_png(&scene_dir.join(format!("{name}.png")))
+                        .map_err(|e| e.to_string())?;
+                    error_map(&image, &reference)?
+                        .write_png(&scene_dir.join(format!("{name}-error.png")))
                         .map_err(|e| e.to_string())?;
                 }
-                eprintln!(
-                    "{:<16} {:<15} {:>5.2} s budget: {:>5} spp relMSE {:.3e}",
-                    suite.name, configuration.name, seconds, measurement.spp, measurement.relmse
-                );
+                progress.println(format!(
+                    "{:<16} {:<15} {:>5.2} s budget: {:>5} spp relMSE {:.3e}{}",
+                    suite.name,
+                    configuration.name,
+                    seconds,
+                    measurement.spp,
+                    measurement.relmse,
+                    if measurement.non_finite > 0 {
+                        format!(
+                            " ({} NaN or infinite samples left out)",
+                            measurement.non_finite
+                        )
+                    } else {
+                        String::new()
+                    }
+                ));
                 measurements.push(measurement);
+                let done_in_scene = (c * budgets.len() + i + 1) as f64
+                    / (configurations.len() * budgets.len()) as f64;
+                progress.set_fraction((scene_index as f64 + done_in_scene) / files.len() as f64);
             }
         }
         reports.push(SceneReport {
@@ -81,11 +105,18 @@ pub fn render_all(root: &Path, args: &[String]) -> Result<bool, String> {
             measurements,
         });
     }
+    progress.finish();
     write_report(&out_dir, &reports)?;
     Ok(true)
 }
 
-/// Renders `configuration` for `seconds` and measures it against `reference`.
+/// Renders `configuration` for about `seconds` and measures it against `reference`.
+///
+/// A pilot render of a tenth of the budget measures the configuration's samples per second;
+/// the measured render then asks for the whole number of samples per pixel that fits the
+/// budget, so stratified and blue-noise samplers lay out their complete pattern for exactly the
+/// samples they take (a time budget alone could stop anywhere inside one). Its actual time is
+/// what is reported.
 fn measure(
     suite: &SuiteScene,
     configuration: &Configuration,
@@ -93,19 +124,29 @@ fn measure(
     seconds: f64,
     seed: u32,
 ) -> Result<(Measurement, Image), String> {
-    let plan = RenderPlan {
-        transport: configuration.transport,
-        sampler: configuration.sampler,
-        seed,
-        budget: RenderBudget {
-            max_spp: None,
-            max_seconds: Some(seconds),
-        },
-        sampler_spp: TIME_BUDGET_NOMINAL_SPP,
-    };
     let filter = film_filter(suite.scene.desc.film.filter).map_err(|e| e.to_string())?;
-    let (output, _) = render_scene(&suite.scene, &plan, &filter, &RenderOptions::quiet())
-        .map_err(|e| e.to_string())?;
+    let render = |budget: RenderBudget, sampler_spp: u32| {
+        let plan = RenderPlan {
+            transport: configuration.transport,
+            sampler: configuration.sampler,
+            seed,
+            budget,
+            sampler_spp,
+        };
+        render_scene(&suite.scene, &plan, &filter, &RenderOptions::quiet())
+            .map(|(output, _)| output)
+            .map_err(|e| e.to_string())
+    };
+    let pilot = render(
+        RenderBudget {
+            max_spp: None,
+            max_seconds: Some(0.1 * seconds),
+        },
+        TIME_BUDGET_NOMINAL_SPP,
+    )?;
+    let rate = f64::from(pilot.spp) / pilot.seconds.max(1e-6);
+    let spp = ((rate * seconds) as u32).clamp(1, TIME_BUDGET_NOMINAL_SPP * 16);
+    let output = render(RenderBudget::spp(spp), spp)?;
     let image = output.film.to_image();
     let mismatch = |e| format!("{}: {e} (re-run `cargo xtask refs`)", suite.name);
     let measurement = Measurement {
@@ -115,6 +156,7 @@ fn measure(
         seconds: output.seconds,
         rmse: rmse(&image, reference).map_err(mismatch)?,
         relmse: relmse(&image, reference).map_err(mismatch)?,
+        non_finite: output.non_finite.nan + output.non_finite.inf,
     };
     Ok((measurement, image))
 }
