@@ -126,7 +126,14 @@ fn samples(c: &mut Criterion) {
             if sampler != "independent" && integrator != "auto" {
                 continue;
             }
-            let flags = ["--integrator", integrator, "--sampler", sampler, "--spp", &spp];
+            let flags = [
+                "--integrator",
+                integrator,
+                "--sampler",
+                sampler,
+                "--spp",
+                &spp,
+            ];
             let plan = plan_from_flags(&scene, &flags).expect("a plan");
             group.bench_function(BenchmarkId::new(integrator, sampler), |b| {
                 b.iter(|| {

@@ -2,14 +2,12 @@
 //! flags on top of the scene file's settings, and the `auto` choice from the scene's features.
 
 use crate::cli::{Cli, Command, IntegratorPreset, RenderArgs, SamplerKind as SamplerFlag};
-use clap::Parser;
 use crate::driver::RenderBudget;
+use clap::Parser;
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
 use sampling::sampler::SamplerKind;
-use scene::{
-    IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures,
-};
+use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
 
 /// Candidates per RIS light choice in the `ris` preset and in `auto`.
 pub const RIS_CANDIDATES: u32 = 8;
@@ -133,7 +131,10 @@ pub fn plan_from_flags(scene: &RenderScene, flags: &[&str]) -> Result<RenderPlan
     let command_line = ["strata", "render", "scene.xml", "--out", "out.exr"]
         .into_iter()
         .chain(flags.iter().copied());
-    match Cli::try_parse_from(command_line).map_err(|e| e.to_string())?.command {
+    match Cli::try_parse_from(command_line)
+        .map_err(|e| e.to_string())?
+        .command
+    {
         Command::Render(args) => Ok(plan(&args, &scene.desc, &scene.features)),
         other => Err(format!("not a render command: {other:?}")),
     }
