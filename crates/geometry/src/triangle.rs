@@ -32,23 +32,42 @@ pub(crate) struct TriangleHit {
 
 impl RayShear {
     /// Prepares the shear for the ray `origin + t * dir` (`dir` non-zero).
+    #[inline(always)]
     pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
-        let kz = dir.abs().max_position();
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        // Keep the winding of the projected triangle: swap when the ray looks down -kz.
-        if dir[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        let sz = 1.0 / dir[kz];
-        let mut cols = [Vec3A::ZERO; 3];
-        cols[kx] = Vec3A::X;
-        cols[ky] = Vec3A::Y;
-        cols[kz] = Vec3A::new(-dir[kx] * sz, -dir[ky] * sz, sz);
-        Self {
-            origin,
-            shear: Mat3A::from_cols(cols[0], cols[1], cols[2]),
-        }
+        // kz is the dominant axis; (kx, ky) follow it cyclically, swapped when the ray looks
+        // down -kz so that the projected triangle keeps its winding. Each case writes the shear's
+        // rows directly rather than permuting through indexed arrays.
+        let a = dir.abs();
+        let (x, y, z) = (dir.x, dir.y, dir.z);
+        let shear = if a.x >= a.y && a.x >= a.z {
+            // kz = x; (kx, ky) = (y, z), swapped for x < 0.
+            let sz = 1.0 / x;
+            let (row_x, row_y) = if x < 0.0 {
+                (Vec3A::new(-z * sz, 0.0, 1.0), Vec3A::new(-y * sz, 1.0, 0.0))
+            } else {
+                (Vec3A::new(-y * sz, 1.0, 0.0), Vec3A::new(-z * sz, 0.0, 1.0))
+            };
+            Mat3A::from_cols(row_x, row_y, Vec3A::new(sz, 0.0, 0.0)).transpose()
+        } else if a.y >= a.z {
+            // kz = y; (kx, ky) = (z, x), swapped for y < 0.
+            let sz = 1.0 / y;
+            let (row_x, row_y) = if y < 0.0 {
+                (Vec3A::new(1.0, -x * sz, 0.0), Vec3A::new(0.0, -z * sz, 1.0))
+            } else {
+                (Vec3A::new(0.0, -z * sz, 1.0), Vec3A::new(1.0, -x * sz, 0.0))
+            };
+            Mat3A::from_cols(row_x, row_y, Vec3A::new(0.0, sz, 0.0)).transpose()
+        } else {
+            // kz = z; (kx, ky) = (x, y), swapped for z < 0.
+            let sz = 1.0 / z;
+            let (row_x, row_y) = if z < 0.0 {
+                (Vec3A::new(0.0, 1.0, -y * sz), Vec3A::new(1.0, 0.0, -x * sz))
+            } else {
+                (Vec3A::new(1.0, 0.0, -x * sz), Vec3A::new(0.0, 1.0, -y * sz))
+            };
+            Mat3A::from_cols(row_x, row_y, Vec3A::new(0.0, 0.0, sz)).transpose()
+        };
+        Self { origin, shear }
     }
 
     /// The hit of the ray with triangle `v` (either side) with `0 < t < t_max`, if any.
