@@ -7,7 +7,7 @@ use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
 use integrators::{PathIntegrator, RayCounters, RayLog, RayTally, reference};
 use sampling::Sampler;
-use sampling::sampler::AnySampler;
+use sampling::sampler::{BlueNoiseSampler, IndependentSampler, SamplerKind, StratifiedSampler};
 use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
@@ -20,13 +20,13 @@ enum Integrator {
 
 /// Per-worker state: the sampler and what it tells about rays, handed to `finish` when the
 /// worker is dropped.
-struct Worker<'a, T> {
-    sampler: AnySampler,
+struct Worker<'a, S, T> {
+    sampler: S,
     tally: T,
     finish: &'a (dyn Fn(&mut T) + Sync),
 }
 
-impl<T> Drop for Worker<'_, T> {
+impl<S, T> Drop for Worker<'_, S, T> {
     fn drop(&mut self) {
         (self.finish)(&mut self.tally);
     }
@@ -78,13 +78,37 @@ pub fn render_scene_recording(
 }
 
 /// Renders the image on the current thread pool, each worker telling its rays to a fresh `T`
-/// that is handed to `finish` when the worker is done.
+/// that is handed to `finish` when the worker is done. The per-sample code is compiled once per
+/// sampler type, so that sampling is inlined into the integrator rather than dispatched per call.
 fn render_image<T: RayTally + Default + Send>(
     scene: &RenderScene,
     plan: &RenderPlan,
     filter: &Filter,
     options: &RenderOptions,
     finish: &(dyn Fn(&mut T) + Sync),
+) -> Result<RenderOutput, BudgetError> {
+    let (seed, spp) = (plan.seed, plan.sampler_spp);
+    match plan.sampler {
+        SamplerKind::Independent => render_with(scene, plan, filter, options, finish, || {
+            IndependentSampler::new(seed, spp)
+        }),
+        SamplerKind::Stratified => render_with(scene, plan, filter, options, finish, || {
+            StratifiedSampler::new(seed, spp)
+        }),
+        SamplerKind::BlueNoise => render_with(scene, plan, filter, options, finish, || {
+            BlueNoiseSampler::new(seed, spp)
+        }),
+    }
+}
+
+/// [`render_image`] with the samplers `new_sampler` makes.
+fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
+    scene: &RenderScene,
+    plan: &RenderPlan,
+    filter: &Filter,
+    options: &RenderOptions,
+    finish: &(dyn Fn(&mut T) + Sync),
+    new_sampler: impl Fn() -> S + Sync + Send,
 ) -> Result<RenderOutput, BudgetError> {
     let world = &scene.world;
     let camera: &Camera = &scene.camera;
@@ -99,11 +123,11 @@ fn render_image<T: RayTally + Default + Send>(
         &plan.budget,
         options,
         || Worker {
-            sampler: AnySampler::new(plan.sampler, plan.seed, plan.sampler_spp),
+            sampler: new_sampler(),
             tally: T::default(),
             finish,
         },
-        |worker: &mut Worker<'_, T>, pixel: UVec2, sample_index: u32| -> Vec3 {
+        |worker: &mut Worker<'_, S, T>, pixel: UVec2, sample_index: u32| -> Vec3 {
             let sampler = &mut worker.sampler;
             sampler.start_pixel_sample(pixel, sample_index);
             let film_position = filter.sample_film_position(pixel, sampler.next_2d());
