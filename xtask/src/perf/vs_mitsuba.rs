@@ -3,24 +3,28 @@
 //!
 //! For each scene (default: cbox, cbox-glass, veach-mis) Mitsuba loads the scene file once and
 //! renders a warm-up image (its JIT variants compile kernels on the first render); a 16-spp render
-//! then calibrates the sample count that takes Mitsuba about `--time` seconds (default 2). Each of
-//! `--runs` rounds (default 5) renders Mitsuba at that count (seed = round) and then Strata
-//! in-process with `--time` set to the seconds Mitsuba just took (`auto` unless `--strata-flags`
-//! say otherwise, same seed), alternating so both see the same machine load. Both read
-//! resolution and `max_depth` from the same file; both use every core.
+//! then calibrates the sample count that takes Mitsuba about `--time` seconds (default 2), and a
+//! Strata render with that time budget (`auto` unless `--strata-flags` say otherwise) gives
+//! Strata's sample count for the same time. Each of `--runs` rounds (default 5) then renders
+//! Mitsuba and Strata (in-process) at their sample counts with the round's seed, alternating so
+//! both see the same machine load. Fixed sample counts rather than Strata's `--time` keep its
+//! stratified and blue-noise samplers laid out for the samples actually taken (under a time
+//! budget they are laid out for 4096). Both read resolution and `max_depth` from the same file;
+//! both use every core.
 //!
 //! Error is relMSE against the stored reference `scenes/refs/NAME.exr`; with `--mitsuba-ref SPP`
 //! also against a Mitsuba render at SPP samples (made once, kept in `target/vs-mitsuba/`), and
 //! the two references' relMSE to each other is printed so a disagreement between the renderers
-//! shows up as a floor. Strata stops at a pass boundary, so its time differs a little from
-//! Mitsuba's; its relMSE is also given scaled to Mitsuba's time (relMSE × its seconds ÷ Mitsuba's
-//! seconds, since relMSE falls as 1 / time), and the verdict uses that scaled figure.
+//! shows up as a floor. The two renderers' times differ a little from round to round, so
+//! Strata's relMSE is also given scaled to Mitsuba's time of the same round (relMSE × Strata's
+//! seconds ÷ Mitsuba's seconds, since relMSE falls as 1 / time), and the verdict uses that
+//! scaled figure.
 //! Everything reported is a median over the rounds. Never in CI: needs `pip install mitsuba` and,
 //! for the default `llvm_ad_rgb` variant, `DRJIT_LIBLLVM_PATH` pointing at libLLVM (see README).
 
 use super::mitsuba_server::MitsubaServer;
 use super::{median, positive, scene_path};
-use render::driver::RenderOptions;
+use render::driver::{RenderOptions, RenderOutput};
 use render::image::Image;
 use render::metrics::relmse;
 use render::session::{film_filter, render_scene};
@@ -141,6 +145,18 @@ fn compare(path: &Path, options: &Options) -> Result<bool, String> {
     let calibration = mitsuba.render(CALIBRATION_SPP, 0, &out("mitsuba-calibration"))?;
     let mitsuba_spp =
         ((f64::from(CALIBRATION_SPP) * options.seconds / calibration).round() as u32).max(1);
+    let strata = |flags: &[&str]| -> Result<(Image, RenderOutput), String> {
+        let mut flags = flags.to_vec();
+        flags.extend(options.strata_flags.iter().map(String::as_str));
+        let plan = plan_from_flags(&scene, &flags)?;
+        let (output, _) = render_scene(&scene, &plan, &filter, &RenderOptions::quiet())
+            .map_err(|e| e.to_string())?;
+        Ok((output.film.to_image(), output))
+    };
+    let strata_spp = strata(&["--time", &options.seconds.to_string(), "--seed", "0"])?
+        .1
+        .spp
+        .to_string();
 
     let mut rounds = Vec::new();
     for seed in 1..=options.runs {
@@ -148,14 +164,7 @@ fn compare(path: &Path, options: &Options) -> Result<bool, String> {
         let mitsuba_seconds = mitsuba.render(mitsuba_spp, seed, &mitsuba_file)?;
         let mitsuba_image = read(&mitsuba_file)?;
 
-        let time = mitsuba_seconds.to_string();
-        let seed_flag = seed.to_string();
-        let mut flags = vec!["--time", &time, "--seed", &seed_flag];
-        flags.extend(options.strata_flags.iter().map(String::as_str));
-        let plan = plan_from_flags(&scene, &flags)?;
-        let (output, _) = render_scene(&scene, &plan, &filter, &RenderOptions::quiet())
-            .map_err(|e| e.to_string())?;
-        let strata_image = output.film.to_image();
+        let (strata_image, output) = strata(&["--spp", &strata_spp, "--seed", &seed.to_string()])?;
         strata_image
             .write_exr(&out(&format!("strata-{seed}")))
             .map_err(|e| e.to_string())?;
