@@ -151,9 +151,9 @@ impl Accel {
     fn surface_hit(&self, ray: &Ray, id: usize, hit: PrimHit) -> Hit {
         let info = self.infos[id];
         match (&self.shapes[info.shape as usize], &self.geoms[id], hit) {
-            (Shape::Mesh(mesh), PrimGeom::Triangle(v), PrimHit::Triangle(tri)) => {
+            (Shape::Mesh(mesh), PrimGeom::Triangle(coords), PrimHit::Triangle(tri)) => {
                 let b = tri.bary;
-                let p = Vec3::from(v[0] * b.x + v[1] * b.y + v[2] * b.z);
+                let p = coords.point(b);
                 let [i0, i1, i2] = mesh.indices[info.prim as usize].map(|i| i as usize);
                 let ns = mesh
                     .normals
