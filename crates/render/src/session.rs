@@ -56,7 +56,7 @@ pub fn render_scene(
 
 /// [`render_scene`], recording every ray traced: the same image and the same rays as
 /// `render_scene` with the same plan (the rays grouped by worker, each worker's in the order
-/// traced). Needs memory for every ray (about 28 bytes each); meant for measuring the
+/// traced). Needs memory for every ray (24 or 28 bytes each); meant for measuring the
 /// ray-casting limit, not for rendering.
 pub fn render_scene_recording(
     scene: &RenderScene,

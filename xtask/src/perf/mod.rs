@@ -23,7 +23,7 @@ fn median(values: &[f64]) -> f64 {
     }
 }
 
-/// The value after the flag `flag` in `rest`, parsed as a positive number.
+/// `value`, the argument after `flag`, parsed as a positive number.
 fn positive<T: std::str::FromStr + PartialOrd + Default>(
     flag: &str,
     value: Option<&String>,
