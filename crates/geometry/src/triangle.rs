@@ -14,17 +14,47 @@
 //! precision, where the bound is 2^29 times smaller: a ray that really meets a huge triangle
 //! close to its origin (a camera a centimetre above a 10 km ground plane) still hits it.
 
-use glam::{DVec3, Mat3A, Vec3, Vec3A};
+use glam::{DVec3, Mat3A, Vec3, Vec3A, Vec3Swizzles};
 
 /// Per-ray data of the watertight test: the ray origin and the shear that maps the ray
-/// direction to +z.
+/// direction to +z, each number splatted to all lanes so that one vector operation handles the
+/// same coordinate of all three vertices.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RayShear {
-    origin: Vec3A,
+    /// Origin coordinates x, y, z, each splatted.
+    origin: [Vec3A; 3],
     /// The ray direction, for the double-precision recomputation.
     dir: Vec3A,
+    /// `shear[i][j]`: coefficient of source coordinate j in sheared coordinate i, splatted.
     /// Rows: `x' = v[kx] - sx v[kz]`, `y' = v[ky] - sy v[kz]`, `z' = sz v[kz]`.
-    shear: Mat3A,
+    shear: [[Vec3A; 3]; 3],
+}
+
+/// A triangle's vertices stored by coordinate: `x` holds the x coordinates of `p0`, `p1`, `p2`
+/// (in its lanes 0, 1, 2), and likewise `y` and `z`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TriangleCoords {
+    pub x: Vec3A,
+    pub y: Vec3A,
+    pub z: Vec3A,
+}
+
+impl TriangleCoords {
+    /// The triangle with vertices `p0`, `p1`, `p2`.
+    pub fn new([p0, p1, p2]: [Vec3A; 3]) -> Self {
+        Self {
+            x: Vec3A::new(p0.x, p1.x, p2.x),
+            y: Vec3A::new(p0.y, p1.y, p2.y),
+            z: Vec3A::new(p0.z, p1.z, p2.z),
+        }
+    }
+
+    /// The point with barycentric coordinates `b` (weights of `p0`, `p1`, `p2`), summed in
+    /// vertex order.
+    pub fn point(&self, b: Vec3) -> Vec3 {
+        let along = |c: Vec3A| c.x * b.x + c.y * b.y + c.z * b.z;
+        Vec3::new(along(self.x), along(self.y), along(self.z))
+    }
 }
 
 /// Barycentric coordinates `(b0, b1, b2)` of `p0`, `p1`, `p2` and the distance of a hit.
@@ -36,56 +66,84 @@ pub(crate) struct TriangleHit {
 
 impl RayShear {
     /// Prepares the shear for the ray `origin + t * dir` (`dir` non-zero).
-    pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
-        let (kx, ky, kz) = Self::axes(dir);
-        let sz = 1.0 / dir[kz];
-        let mut cols = [Vec3A::ZERO; 3];
-        cols[kx] = Vec3A::X;
-        cols[ky] = Vec3A::Y;
-        cols[kz] = Vec3A::new(-dir[kx] * sz, -dir[ky] * sz, sz);
-        Self {
-            origin,
-            dir,
-            shear: Mat3A::from_cols(cols[0], cols[1], cols[2]),
-        }
-    }
-
-    /// The axes `(kx, ky, kz)` of the sheared frame: `kz` the direction's largest component,
-    /// `kx` and `ky` ordered to keep the projected triangle's winding.
-    fn axes(dir: Vec3A) -> (usize, usize, usize) {
-        let kz = dir.abs().max_position();
-        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        if dir[kz] < 0.0 {
-            (ky, kx, kz)
-        } else {
-            (kx, ky, kz)
-        }
-    }
-
-    /// The hit of the ray with triangle `v` (either side) with `0 < t < t_max`, if any.
     #[inline(always)]
-    pub fn intersect(&self, v: &[Vec3A; 3], t_max: f32) -> Option<TriangleHit> {
-        let a = self.shear.mul_vec3a(v[0] - self.origin);
-        let b = self.shear.mul_vec3a(v[1] - self.origin);
-        let c = self.shear.mul_vec3a(v[2] - self.origin);
-        let mut u = c.x * b.y - c.y * b.x;
-        let mut v_ = a.x * c.y - a.y * c.x;
-        let mut w = b.x * a.y - b.y * a.x;
-        if u == 0.0 || v_ == 0.0 || w == 0.0 {
-            let cross =
-                |p: Vec3A, q: Vec3A| (p.x as f64 * q.y as f64 - p.y as f64 * q.x as f64) as f32;
-            u = cross(c, b);
-            v_ = cross(a, c);
-            w = cross(b, a);
+    pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
+        // kz is the dominant axis; (kx, ky) follow it cyclically, swapped when the ray looks
+        // down -kz so that the projected triangle keeps its winding. Each case writes the shear's
+        // rows directly rather than permuting through indexed arrays (the matrix's columns below
+        // hold the rows).
+        let a = dir.abs();
+        let (x, y, z) = (dir.x, dir.y, dir.z);
+        let shear = if a.x >= a.y && a.x >= a.z {
+            // kz = x; (kx, ky) = (y, z), swapped for x < 0.
+            let sz = 1.0 / x;
+            let (row_x, row_y) = if x < 0.0 {
+                (Vec3A::new(-z * sz, 0.0, 1.0), Vec3A::new(-y * sz, 1.0, 0.0))
+            } else {
+                (Vec3A::new(-y * sz, 1.0, 0.0), Vec3A::new(-z * sz, 0.0, 1.0))
+            };
+            Mat3A::from_cols(row_x, row_y, Vec3A::new(sz, 0.0, 0.0))
+        } else if a.y >= a.z {
+            // kz = y; (kx, ky) = (z, x), swapped for y < 0.
+            let sz = 1.0 / y;
+            let (row_x, row_y) = if y < 0.0 {
+                (Vec3A::new(1.0, -x * sz, 0.0), Vec3A::new(0.0, -z * sz, 1.0))
+            } else {
+                (Vec3A::new(0.0, -z * sz, 1.0), Vec3A::new(1.0, -x * sz, 0.0))
+            };
+            Mat3A::from_cols(row_x, row_y, Vec3A::new(0.0, sz, 0.0))
+        } else {
+            // kz = z; (kx, ky) = (x, y), swapped for z < 0.
+            let sz = 1.0 / z;
+            let (row_x, row_y) = if z < 0.0 {
+                (Vec3A::new(0.0, 1.0, -y * sz), Vec3A::new(1.0, 0.0, -x * sz))
+            } else {
+                (Vec3A::new(1.0, 0.0, -x * sz), Vec3A::new(0.0, 1.0, -y * sz))
+            };
+            Mat3A::from_cols(row_x, row_y, Vec3A::new(0.0, 0.0, sz))
+        };
+        let splat = |row: Vec3A| [row.x, row.y, row.z].map(Vec3A::splat);
+        Self {
+            origin: [origin.x, origin.y, origin.z].map(Vec3A::splat),
+            dir,
+            shear: [
+                splat(shear.x_axis),
+                splat(shear.y_axis),
+                splat(shear.z_axis),
+            ],
         }
-        if (u < 0.0 || v_ < 0.0 || w < 0.0) && (u > 0.0 || v_ > 0.0 || w > 0.0) {
+    }
+
+    /// The hit of the ray with triangle `tri` (either side) with `0 < t < t_max`, if any.
+    #[inline(always)]
+    pub fn intersect(&self, tri: &TriangleCoords, t_max: f32) -> Option<TriangleHit> {
+        // Sheared coordinates of the three vertices a, b, c, by coordinate: xs = (a.x, b.x, c.x).
+        let d = [
+            tri.x - self.origin[0],
+            tri.y - self.origin[1],
+            tri.z - self.origin[2],
+        ];
+        let sheared = |row: &[Vec3A; 3]| row[0] * d[0] + row[1] * d[1] + row[2] * d[2];
+        let xs = sheared(&self.shear[0]);
+        let ys = sheared(&self.shear[1]);
+        let zs = sheared(&self.shear[2]);
+        // Edge functions (u, v, w) = (c.x b.y - c.y b.x, a.x c.y - a.y c.x, b.x a.y - b.y a.x).
+        let mut edges = xs.zxy() * ys.yzx() - ys.zxy() * xs.yzx();
+        if edges.cmpeq(Vec3A::ZERO).any() {
+            let cross = |i: usize, j: usize| {
+                (f64::from(xs[i]) * f64::from(ys[j]) - f64::from(ys[i]) * f64::from(xs[j])) as f32
+            };
+            edges = Vec3A::new(cross(2, 1), cross(0, 2), cross(1, 0));
+        }
+        if edges.cmplt(Vec3A::ZERO).any() && edges.cmpgt(Vec3A::ZERO).any() {
             return None;
         }
-        let det = u + v_ + w;
+        let det = edges.x + edges.y + edges.z;
         if det == 0.0 {
             return None;
         }
-        let t_scaled = u * a.z + v_ * b.z + w * c.z;
+        let weighted = edges * zs;
+        let t_scaled = weighted.x + weighted.y + weighted.z;
         // 0 < t_scaled / det < t_max without dividing.
         let inside = if det > 0.0 {
             t_scaled > 0.0 && t_scaled < t_max * det
@@ -97,31 +155,49 @@ impl RayShear {
         }
         let inv_det = 1.0 / det;
         let t = t_scaled * inv_det;
+        let max = Vec3A::new(
+            xs.abs().max_element(),
+            ys.abs().max_element(),
+            zs.abs().max_element(),
+        );
         if t >= t_max {
             return None;
         }
-        if t > t_error_bound(a, b, c, Vec3A::new(u, v_, w), inv_det) {
+        if t > t_error_bound(max, edges, inv_det) {
             return Some(TriangleHit {
                 t,
-                bary: Vec3::new(u, v_, w) * inv_det,
+                bary: Vec3::from(edges * inv_det),
             });
         }
-        self.intersect_f64(v, t_max)
+        self.intersect_f64(tri, t_max)
     }
 
     /// The same test in double precision, for hits too close to the origin for the single
     /// precision error bound to place them in front of it.
     #[cold]
-    fn intersect_f64(&self, v: &[Vec3A; 3], t_max: f32) -> Option<TriangleHit> {
-        let (kx, ky, kz) = Self::axes(self.dir);
+    fn intersect_f64(&self, tri: &TriangleCoords, t_max: f32) -> Option<TriangleHit> {
         let dir = self.dir.as_dvec3();
+        let kz = dir.abs().max_position();
+        let (kx, ky) = if dir[kz] < 0.0 {
+            ((kz + 2) % 3, (kz + 1) % 3)
+        } else {
+            ((kz + 1) % 3, (kz + 2) % 3)
+        };
         let (sx, sy, sz) = (dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]);
-        let origin = self.origin.as_dvec3();
-        let sheared = |p: Vec3A| {
-            let p = p.as_dvec3() - origin;
+        let origin = DVec3::new(
+            f64::from(self.origin[0].x),
+            f64::from(self.origin[1].x),
+            f64::from(self.origin[2].x),
+        );
+        let sheared = |i: usize| {
+            let p = DVec3::new(
+                f64::from(tri.x[i]),
+                f64::from(tri.y[i]),
+                f64::from(tri.z[i]),
+            ) - origin;
             DVec3::new(p[kx] - sx * p[kz], p[ky] - sy * p[kz], sz * p[kz])
         };
-        let (a, b, c) = (sheared(v[0]), sheared(v[1]), sheared(v[2]));
+        let (a, b, c) = (sheared(0), sheared(1), sheared(2));
         let edges = DVec3::new(
             c.x * b.y - c.y * b.x,
             a.x * c.y - a.y * c.x,
@@ -157,11 +233,10 @@ const fn gamma(n: f32) -> f32 {
     n * u / (1.0 - n * u)
 }
 
-/// Bound on the absolute rounding error of `t` computed from the sheared vertices `a`, `b`, `c`,
-/// the edge functions `edges` and `1 / det`.
+/// Bound on the absolute rounding error of `t` computed from the largest magnitude `max` of each
+/// sheared coordinate over the three vertices, the edge functions `edges` and `1 / det`.
 #[inline(always)]
-fn t_error_bound(a: Vec3A, b: Vec3A, c: Vec3A, edges: Vec3A, inv_det: f32) -> f32 {
-    let max = a.abs().max(b.abs()).max(c.abs());
+fn t_error_bound(max: Vec3A, edges: Vec3A, inv_det: f32) -> f32 {
     let delta_z = gamma(3.0) * max.z;
     let delta_x = gamma(5.0) * (max.x + max.z);
     let delta_y = gamma(5.0) * (max.y + max.z);
@@ -174,12 +249,12 @@ fn t_error_bound(a: Vec3A, b: Vec3A, c: Vec3A, edges: Vec3A, inv_det: f32) -> f3
 mod tests {
     use super::*;
 
-    fn tri() -> [Vec3A; 3] {
-        [
+    fn tri() -> TriangleCoords {
+        TriangleCoords::new([
             Vec3A::new(0.0, 0.0, -2.0),
             Vec3A::new(1.0, 0.0, -2.0),
             Vec3A::new(0.0, 1.0, -2.0),
-        ]
+        ])
     }
 
     #[test]
@@ -210,11 +285,11 @@ mod tests {
     fn rounding_noise_behind_the_origin_is_not_a_hit() {
         // A ray leaving a 2000-unit floor upwards, from 2^-16 above it at a point with small
         // coordinates: t comes out at about +6e-5 though the floor lies behind the origin.
-        let floor = [
+        let floor = TriangleCoords::new([
             Vec3A::new(-1000.0, -1000.0, 0.0),
             Vec3A::new(1000.0, 1000.0, 0.0),
             Vec3A::new(-1000.0, 1000.0, 0.0),
-        ];
+        ]);
         let origin = Vec3A::new(-381.40607, 200.33887, 1.0 / 65536.0);
         let dir = Vec3A::new(0.734063, -0.3494725, 0.58225465);
         assert!(
@@ -225,23 +300,25 @@ mod tests {
         // Turned downwards it hits at every height, though below about 3e-2 its single
         // precision t is within the error bound and is recomputed in double precision.
         let down = dir * Vec3A::new(1.0, 1.0, -1.0);
-        for (height, hits) in [(1e-1, true), (3e-2, true), (1e-3, true), (1e-6, true)] {
+        for height in [1e-1, 3e-2, 1e-3, 1e-6] {
             let from = Vec3A::new(origin.x, origin.y, height);
             let hit = RayShear::new(from, down).intersect(&floor, f32::INFINITY);
-            assert_eq!(hit.is_some(), hits, "height {height}: {hit:?}");
-            if let Some(hit) = hit {
-                // Single precision is good to about 1e-4 here, double to about 1e-7 of t.
-                let expected = height / 0.58225465;
-                let tolerance = if height < 1e-2 { 1e-3 * expected } else { 1e-3 };
-                assert!((hit.t - expected).abs() < tolerance, "t = {}", hit.t);
-            }
+            let hit = hit.unwrap_or_else(|| panic!("height {height}: no hit"));
+            // Single precision is good to about 1e-4 here, double to about 1e-7 of t.
+            let expected = height / 0.58225465;
+            let tolerance = if height < 1e-2 { 1e-3 * expected } else { 1e-3 };
+            assert!(
+                (hit.t - expected).abs() < tolerance,
+                "height {height}: t = {}",
+                hit.t
+            );
         }
     }
 
     #[test]
     fn degenerate_triangle_never_hits() {
-        let line = [Vec3A::ZERO, Vec3A::X, Vec3A::new(2.0, 0.0, 0.0)];
-        let point = [Vec3A::ONE; 3];
+        let line = TriangleCoords::new([Vec3A::ZERO, Vec3A::X, Vec3A::new(2.0, 0.0, 0.0)]);
+        let point = TriangleCoords::new([Vec3A::ONE; 3]);
         for dir in [
             Vec3A::NEG_Z,
             Vec3A::new(1.0, 0.0, -1.0).normalize(),

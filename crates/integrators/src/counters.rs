@@ -1,4 +1,18 @@
-//! Per-thread counts of the rays a render traces.
+//! Per-thread counts of the rays a render traces, and the trait through which the integrators
+//! report every ray they trace.
+
+use geometry::Ray;
+
+/// Told about every ray an integrator traces through [`crate::World`]. Integrators are generic
+/// over it, so a render that only counts ([`RayCounters`]) compiles to two additions per ray,
+/// and one that records every ray ([`crate::RayLog`]) costs nothing when it is not used.
+pub trait RayTally {
+    /// A closest-hit ray (camera or bounce ray), traced with `t_max` = ∞.
+    fn closest_ray(&mut self, ray: &Ray);
+    /// An occlusion ray towards a light, traced for `0 < t < t_max` (world units; ∞ towards
+    /// the environment).
+    fn shadow_ray(&mut self, ray: &Ray, t_max: f32);
+}
 
 /// Rays traced while estimating one or more samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -14,5 +28,17 @@ impl RayCounters {
     pub fn add(&mut self, other: RayCounters) {
         self.rays += other.rays;
         self.shadow_rays += other.shadow_rays;
+    }
+}
+
+impl RayTally for RayCounters {
+    #[inline(always)]
+    fn closest_ray(&mut self, _ray: &Ray) {
+        self.rays += 1;
+    }
+
+    #[inline(always)]
+    fn shadow_ray(&mut self, _ray: &Ray, _t_max: f32) {
+        self.shadow_rays += 1;
     }
 }

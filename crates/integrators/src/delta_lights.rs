@@ -1,7 +1,7 @@
 //! Connecting a shading point to every delta light: the only unbiased way to see point lights
 //! without light selection, since no sampled direction can hit them.
 
-use crate::{RayCounters, SurfaceHit, World};
+use crate::{RayTally, SurfaceHit, World};
 use glam::{Vec2, Vec3};
 
 /// Light from every delta light at `surface`, each by its one shadow ray. Without light sampling
@@ -10,7 +10,7 @@ pub(crate) fn delta_lights(
     world: &World,
     surface: &SurfaceHit<'_>,
     wo: Vec3,
-    counters: &mut RayCounters,
+    counters: &mut impl RayTally,
 ) -> Vec3 {
     let mut sum = Vec3::ZERO;
     for &index in world.delta_lights() {

@@ -6,12 +6,14 @@ mod counters;
 mod delta_lights;
 mod light_choice;
 pub mod path;
+mod ray_log;
 pub mod reference;
 mod settings;
 mod uniform_direction;
 mod world;
 
-pub use counters::RayCounters;
+pub use counters::{RayCounters, RayTally};
 pub use path::PathIntegrator;
+pub use ray_log::{RayLog, ShadowRay};
 pub use settings::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
 pub use world::{MaterialId, SurfaceHit, World};

@@ -14,7 +14,7 @@ use crate::light_choice::choose_light;
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{LightSelectionMode, Mis, PathSettings};
 use crate::uniform_direction::{sample_uniform_direction, uniform_direction_pdf};
-use crate::{RayCounters, SurfaceHit, World};
+use crate::{RayTally, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
@@ -78,7 +78,7 @@ impl PathIntegrator {
         world: &World,
         camera_ray: Ray,
         sampler: &mut impl Sampler,
-        counters: &mut RayCounters,
+        counters: &mut impl RayTally,
     ) -> Vec3 {
         let settings = &self.settings;
         let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
@@ -178,7 +178,7 @@ impl PathIntegrator {
         wo: Vec3,
         u_choice: f32,
         u_point: Vec2,
-        counters: &mut RayCounters,
+        counters: &mut impl RayTally,
     ) -> Vec3 {
         let Some(selector) = &self.selector else {
             return Vec3::ZERO;

@@ -8,7 +8,7 @@
 
 use crate::delta_lights::delta_lights;
 use crate::uniform_direction::sample_uniform_direction;
-use crate::{RayCounters, World};
+use crate::{RayTally, World};
 use geometry::Ray;
 use glam::Vec3;
 use sampling::Sampler;
@@ -36,7 +36,7 @@ pub fn radiance(
     camera_ray: Ray,
     sampler: &mut impl Sampler,
     settings: &ReferenceSettings,
-    counters: &mut RayCounters,
+    counters: &mut impl RayTally,
 ) -> Vec3 {
     let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
     let mut radiance = Vec3::ZERO;

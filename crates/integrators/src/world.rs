@@ -1,7 +1,7 @@
 //! Everything light transport needs to know about a scene: geometry, materials and emitters,
 //! in flat arrays indexed by shape.
 
-use crate::RayCounters;
+use crate::RayTally;
 use geometry::{Accel, Hit, Ray};
 use glam::Vec3;
 use lights::Light;
@@ -115,10 +115,10 @@ impl World {
         &self.accel
     }
 
-    /// The closest surface along `ray`, counting one ray.
+    /// The closest surface along `ray`, told to `tally` as one closest-hit ray.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, counters: &mut RayCounters) -> Option<SurfaceHit<'_>> {
-        counters.rays += 1;
+    pub fn intersect(&self, ray: &Ray, tally: &mut impl RayTally) -> Option<SurfaceHit<'_>> {
+        tally.closest_ray(ray);
         let hit = self.accel.intersect(ray, f32::INFINITY)?;
         let shape = hit.shape as usize;
         Some(SurfaceHit {
@@ -130,7 +130,7 @@ impl World {
     }
 
     /// True when nothing blocks the segment from the surface point `p` (geometric normal `ng`)
-    /// to `p_light` (normal `n_light`, zero for points), counting one shadow ray.
+    /// to `p_light` (normal `n_light`, zero for points), told to `tally` as one shadow ray.
     #[inline]
     pub fn unoccluded(
         &self,
@@ -138,19 +138,20 @@ impl World {
         ng: Vec3,
         p_light: Vec3,
         n_light: Vec3,
-        counters: &mut RayCounters,
+        tally: &mut impl RayTally,
     ) -> bool {
-        counters.shadow_rays += 1;
         let (ray, distance) = Ray::spawn_to(p, ng, p_light, n_light);
+        tally.shadow_ray(&ray, distance);
         !self.accel.occluded(&ray, distance)
     }
 
     /// True when nothing blocks the ray from `p` (geometric normal `ng`) in direction `dir` from
-    /// escaping the scene, counting one shadow ray.
+    /// escaping the scene, told to `tally` as one shadow ray.
     #[inline]
-    pub fn escapes(&self, p: Vec3, ng: Vec3, dir: Vec3, counters: &mut RayCounters) -> bool {
-        counters.shadow_rays += 1;
-        !self.accel.occluded(&Ray::spawn(p, ng, dir), f32::INFINITY)
+    pub fn escapes(&self, p: Vec3, ng: Vec3, dir: Vec3, tally: &mut impl RayTally) -> bool {
+        let ray = Ray::spawn(p, ng, dir);
+        tally.shadow_ray(&ray, f32::INFINITY);
+        !self.accel.occluded(&ray, f32::INFINITY)
     }
 
     /// Radiance emitted by the surface of `surface` towards the unit direction `w`.

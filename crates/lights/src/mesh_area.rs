@@ -12,6 +12,8 @@ use std::f32::consts::PI;
 #[derive(Clone, Debug)]
 pub struct MeshAreaLight {
     triangles: Vec<[Vec3; 3]>,
+    /// Unit geometric normal of each triangle (zero for degenerate ones, which are never sampled).
+    normals: Vec<Vec3>,
     area_distribution: CdfTable,
     total_area: f32,
     radiance: Vec3,
@@ -24,8 +26,13 @@ impl MeshAreaLight {
         let areas: Vec<f32> = triangles.iter().map(triangle_area).collect();
         let total_area: f32 = areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32;
         let area_distribution = CdfTable::new(&areas).ok()?;
+        let normals = triangles
+            .iter()
+            .map(|[p0, p1, p2]| (*p1 - *p0).cross(*p2 - *p0).normalize_or_zero())
+            .collect();
         Some(Self {
             triangles,
+            normals,
             area_distribution,
             total_area,
             radiance,
@@ -49,7 +56,7 @@ impl MeshAreaLight {
         let [p0, p1, p2] = self.triangles[index];
         let b = sample_uniform_triangle(Vec2::new(u_remapped, u.y));
         let p_light = p0 * b.x + p1 * b.y + p2 * b.z;
-        let n_light = (p1 - p0).cross(p2 - p0).normalize_or_zero();
+        let n_light = self.normals[index];
         area_sample_towards(p, p_light, n_light, 1.0 / self.total_area, self.radiance)
     }
 

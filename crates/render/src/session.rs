@@ -5,11 +5,12 @@ use crate::driver::{BudgetError, RenderOptions, RenderOutput, render};
 use crate::filter::{Filter, FilterError};
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
-use integrators::{PathIntegrator, RayCounters, reference};
+use integrators::{PathIntegrator, RayCounters, RayLog, RayTally, reference};
 use sampling::Sampler;
-use sampling::sampler::AnySampler;
+use sampling::sampler::{BlueNoiseSampler, IndependentSampler, SamplerKind, StratifiedSampler};
 use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, PoisonError};
 
 /// The light transport of a render, built for its world.
 enum Integrator {
@@ -17,28 +18,17 @@ enum Integrator {
     Path(PathIntegrator),
 }
 
-/// Per-worker state: the sampler and ray counts, added to the shared totals when dropped.
-struct Worker<'a> {
-    sampler: AnySampler,
-    counters: RayCounters,
-    totals: &'a RayTotals,
+/// Per-worker state: the sampler and what it tells about rays, handed to `finish` when the
+/// worker is dropped.
+struct Worker<'a, S, T> {
+    sampler: S,
+    tally: T,
+    finish: &'a (dyn Fn(&mut T) + Sync),
 }
 
-/// Ray counts over all workers.
-#[derive(Default)]
-struct RayTotals {
-    rays: AtomicU64,
-    shadow_rays: AtomicU64,
-}
-
-impl Drop for Worker<'_> {
+impl<S, T> Drop for Worker<'_, S, T> {
     fn drop(&mut self) {
-        self.totals
-            .rays
-            .fetch_add(self.counters.rays, Ordering::Relaxed);
-        self.totals
-            .shadow_rays
-            .fetch_add(self.counters.shadow_rays, Ordering::Relaxed);
+        (self.finish)(&mut self.tally);
     }
 }
 
@@ -50,22 +40,75 @@ pub fn render_scene(
     filter: &Filter,
     options: &RenderOptions,
 ) -> Result<(RenderOutput, RayCounters), BudgetError> {
-    let totals = RayTotals::default();
-    let output = render_image(scene, plan, filter, options, &totals)?;
+    let rays = AtomicU64::new(0);
+    let shadow_rays = AtomicU64::new(0);
+    let finish = |counters: &mut RayCounters| {
+        rays.fetch_add(counters.rays, Ordering::Relaxed);
+        shadow_rays.fetch_add(counters.shadow_rays, Ordering::Relaxed);
+    };
+    let output = render_image(scene, plan, filter, options, &finish)?;
     let counters = RayCounters {
-        rays: totals.rays.load(Ordering::Relaxed),
-        shadow_rays: totals.shadow_rays.load(Ordering::Relaxed),
+        rays: rays.load(Ordering::Relaxed),
+        shadow_rays: shadow_rays.load(Ordering::Relaxed),
     };
     Ok((output, counters))
 }
 
-/// Renders the image on the current thread pool.
-fn render_image(
+/// [`render_scene`], recording every ray traced: the same image and the same rays as
+/// `render_scene` with the same plan (the rays grouped by worker, each worker's in the order
+/// traced). Needs memory for every ray (24 or 28 bytes each); meant for measuring the
+/// ray-casting limit, not for rendering.
+pub fn render_scene_recording(
     scene: &RenderScene,
     plan: &RenderPlan,
     filter: &Filter,
     options: &RenderOptions,
-    totals: &RayTotals,
+) -> Result<(RenderOutput, RayLog), BudgetError> {
+    let log = Mutex::new(RayLog::default());
+    let finish = |worker_log: &mut RayLog| {
+        log.lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .append(worker_log);
+    };
+    let output = render_image(scene, plan, filter, options, &finish)?;
+    Ok((
+        output,
+        log.into_inner().unwrap_or_else(PoisonError::into_inner),
+    ))
+}
+
+/// Renders the image on the current thread pool, each worker telling its rays to a fresh `T`
+/// that is handed to `finish` when the worker is done. The per-sample code is compiled once per
+/// sampler type, so that sampling is inlined into the integrator rather than dispatched per call.
+fn render_image<T: RayTally + Default + Send>(
+    scene: &RenderScene,
+    plan: &RenderPlan,
+    filter: &Filter,
+    options: &RenderOptions,
+    finish: &(dyn Fn(&mut T) + Sync),
+) -> Result<RenderOutput, BudgetError> {
+    let (seed, spp) = (plan.seed, plan.sampler_spp);
+    match plan.sampler {
+        SamplerKind::Independent => render_with(scene, plan, filter, options, finish, || {
+            IndependentSampler::new(seed, spp)
+        }),
+        SamplerKind::Stratified => render_with(scene, plan, filter, options, finish, || {
+            StratifiedSampler::new(seed, spp)
+        }),
+        SamplerKind::BlueNoise => render_with(scene, plan, filter, options, finish, || {
+            BlueNoiseSampler::new(seed, spp)
+        }),
+    }
+}
+
+/// [`render_image`] with the samplers `new_sampler` makes.
+fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
+    scene: &RenderScene,
+    plan: &RenderPlan,
+    filter: &Filter,
+    options: &RenderOptions,
+    finish: &(dyn Fn(&mut T) + Sync),
+    new_sampler: impl Fn() -> S + Sync + Send,
 ) -> Result<RenderOutput, BudgetError> {
     let world = &scene.world;
     let camera: &Camera = &scene.camera;
@@ -80,11 +123,11 @@ fn render_image(
         &plan.budget,
         options,
         || Worker {
-            sampler: AnySampler::new(plan.sampler, plan.seed, plan.sampler_spp),
-            counters: RayCounters::default(),
-            totals,
+            sampler: new_sampler(),
+            tally: T::default(),
+            finish,
         },
-        |worker: &mut Worker<'_>, pixel: UVec2, sample_index: u32| -> Vec3 {
+        |worker: &mut Worker<'_, S, T>, pixel: UVec2, sample_index: u32| -> Vec3 {
             let sampler = &mut worker.sampler;
             sampler.start_pixel_sample(pixel, sample_index);
             let film_position = filter.sample_film_position(pixel, sampler.next_2d());
@@ -96,9 +139,9 @@ fn render_image(
             let ray = camera.generate_ray(film_position, u_lens);
             match &integrator {
                 Integrator::Reference(settings) => {
-                    reference::radiance(world, ray, sampler, settings, &mut worker.counters)
+                    reference::radiance(world, ray, sampler, settings, &mut worker.tally)
                 }
-                Integrator::Path(path) => path.radiance(world, ray, sampler, &mut worker.counters),
+                Integrator::Path(path) => path.radiance(world, ray, sampler, &mut worker.tally),
             }
         },
     )

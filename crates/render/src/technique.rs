@@ -1,12 +1,13 @@
 //! Which light transport, sampler and budget a `strata render` runs with: the command line's
 //! flags on top of the scene file's settings, and the `auto` choice from the scene's features.
 
-use crate::cli::{IntegratorPreset, RenderArgs, SamplerKind as SamplerFlag};
+use crate::cli::{Cli, Command, IntegratorPreset, RenderArgs, SamplerKind as SamplerFlag};
 use crate::driver::RenderBudget;
+use clap::Parser;
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
 use sampling::sampler::SamplerKind;
-use scene::{IntegratorKind, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
+use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
 
 /// Candidates per RIS light choice in the `ris` preset and in `auto`.
 pub const RIS_CANDIDATES: u32 = 8;
@@ -120,6 +121,22 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         seed,
         budget,
         sampler_spp: budget.max_spp.unwrap_or(TIME_BUDGET_NOMINAL_SPP),
+    }
+}
+
+/// The plan `strata render` makes for `scene` with the extra command-line `flags` (e.g.
+/// `["--integrator", "mis", "--spp", "4"]`), for tools and benchmarks that render in-process.
+/// Flags that only concern files (`--out`, `--png`, `--stats`) and `--threads` have no effect.
+pub fn plan_from_flags(scene: &RenderScene, flags: &[&str]) -> Result<RenderPlan, String> {
+    let command_line = ["strata", "render", "scene.xml", "--out", "out.exr"]
+        .into_iter()
+        .chain(flags.iter().copied());
+    match Cli::try_parse_from(command_line)
+        .map_err(|e| e.to_string())?
+        .command
+    {
+        Command::Render(args) => Ok(plan(&args, &scene.desc, &scene.features)),
+        other => Err(format!("not a render command: {other:?}")),
     }
 }
 

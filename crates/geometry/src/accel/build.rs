@@ -10,6 +10,7 @@ use obvhs::cwbvh::builder::build_cwbvh;
 
 use super::prim::{PrimGeom, PrimInfo, direction_of};
 use crate::sphere::SphereGeom;
+use crate::triangle::TriangleCoords;
 use crate::{Aabb, Shape};
 
 /// The built hierarchy and its primitives in BVH order.
@@ -45,7 +46,7 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
                         continue;
                     };
                     let v = [p0, p1, p2].map(Vec3A::from);
-                    geoms.push(PrimGeom::Triangle(v));
+                    geoms.push(PrimGeom::Triangle(TriangleCoords::new(v)));
                     infos.push(PrimInfo {
                         shape: shape_index,
                         prim: u32::try_from(prim).expect("fewer than 2^32 triangles per mesh"),

@@ -14,7 +14,7 @@ use crate::{Aabb, Hit, Ray, Shape, Sphere};
 use node::hit_children;
 use prim::{PrimGeom, PrimHit, PrimInfo, direction_of};
 use query::RayQuery;
-use walk::{FIXED_STACK, Walk};
+use walk::{FIXED_STACK, SMALL_STACK, StackKind, Walk};
 
 /// A compressed wide BVH (obvhs' CWBVH, built by PLOC) over every triangle and sphere of a
 /// scene, owning the shapes. Queries do not allocate (except on pathologically deep trees, see
@@ -30,9 +30,9 @@ pub struct Accel {
     /// Ids and normals of the primitives, in the same order as `geoms`.
     infos: Vec<PrimInfo>,
     bounds: Aabb,
-    /// True when the tree is too deep for the fixed traversal stack (thousands of exactly
-    /// coincident primitives); queries then allocate a stack sized to `depth`.
-    deep: bool,
+    /// The traversal stack the tree needs: small for small scenes, on the heap (allocated per
+    /// query, sized to `depth`) for trees too deep for the fixed stack.
+    stack: StackKind,
     depth: usize,
 }
 
@@ -51,7 +51,7 @@ impl Accel {
             geoms: built.geoms,
             infos: built.infos,
             bounds: built.bounds,
-            deep: depth + 1 >= FIXED_STACK,
+            stack: StackKind::for_depth(depth),
             depth,
         }
     }
@@ -72,10 +72,10 @@ impl Accel {
             return None;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
-        let found = if self.deep {
-            self.closest(self.deep_walk(&query), &query, t_max)
-        } else {
-            self.closest(fixed_walk(&query), &query, t_max)
+        let found = match self.stack {
+            StackKind::Small => self.closest(fixed_walk::<SMALL_STACK>(&query), &query, t_max),
+            StackKind::Fixed => self.closest(fixed_walk::<FIXED_STACK>(&query), &query, t_max),
+            StackKind::Heap => self.closest(self.deep_walk(&query), &query, t_max),
         };
         found.map(|(id, hit)| self.surface_hit(ray, id, hit))
     }
@@ -86,10 +86,10 @@ impl Accel {
             return false;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
-        if self.deep {
-            self.any(self.deep_walk(&query), &query, t_max)
-        } else {
-            self.any(fixed_walk(&query), &query, t_max)
+        match self.stack {
+            StackKind::Small => self.any(fixed_walk::<SMALL_STACK>(&query), &query, t_max),
+            StackKind::Fixed => self.any(fixed_walk::<FIXED_STACK>(&query), &query, t_max),
+            StackKind::Heap => self.any(self.deep_walk(&query), &query, t_max),
         }
     }
 
@@ -151,9 +151,9 @@ impl Accel {
     fn surface_hit(&self, ray: &Ray, id: usize, hit: PrimHit) -> Hit {
         let info = self.infos[id];
         match (&self.shapes[info.shape as usize], &self.geoms[id], hit) {
-            (Shape::Mesh(mesh), PrimGeom::Triangle(v), PrimHit::Triangle(tri)) => {
+            (Shape::Mesh(mesh), PrimGeom::Triangle(coords), PrimHit::Triangle(tri)) => {
                 let b = tri.bary;
-                let p = Vec3::from(v[0] * b.x + v[1] * b.y + v[2] * b.z);
+                let p = coords.point(b);
                 let [i0, i1, i2] = mesh.indices[info.prim as usize].map(|i| i as usize);
                 let ns = mesh
                     .normals
@@ -198,7 +198,7 @@ impl Accel {
     }
 }
 
-fn fixed_walk(query: &RayQuery) -> Walk<StackStack<UVec2, FIXED_STACK>> {
+fn fixed_walk<const N: usize>(query: &RayQuery) -> Walk<StackStack<UVec2, N>> {
     Walk::new(StackStack::default(), query.neg)
 }
 

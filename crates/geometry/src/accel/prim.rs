@@ -1,17 +1,17 @@
 //! Primitives as the BVH stores them: flat, in BVH leaf order, with the ids and normals needed
 //! to turn a hit into a [`crate::Hit`] kept apart from the data traversal touches.
 
-use glam::{Vec3, Vec3A};
+use glam::Vec3;
 
 use crate::sphere::SphereGeom;
-use crate::triangle::TriangleHit;
+use crate::triangle::{TriangleCoords, TriangleHit};
 
 use super::query::RayQuery;
 
 /// The geometry of one primitive.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum PrimGeom {
-    Triangle([Vec3A; 3]),
+    Triangle(TriangleCoords),
     Sphere(SphereGeom),
 }
 

@@ -21,6 +21,7 @@ pub(crate) struct RayQuery {
 }
 
 impl RayQuery {
+    #[inline(always)]
     pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
         let neg = dir.cmplt(Vec3A::ZERO);
         let magnitude = dir.abs().max(Vec3A::splat(1.0 / MAX_INV_DIR));

@@ -6,6 +6,7 @@ use glam::Vec3;
 use super::Accel;
 use super::prim::PrimHit;
 use super::query::RayQuery;
+use super::walk::StackKind;
 use crate::{Ray, Shape, Sphere, TriangleMesh};
 
 /// xorshift64*, enough for reproducible inputs here.
@@ -105,10 +106,23 @@ fn check_against_brute_force(accel: &Accel, rng: &mut Rng, count: usize, scene: 
 fn closest_hit_and_occlusion_match_brute_force() {
     let mut rng = Rng(0x5eed_0001);
     let accel = Accel::new(random_scene(&mut rng, 3000, 60));
-    assert!(!accel.deep);
+    assert_ne!(accel.stack, StackKind::Heap);
     let hits = check_against_brute_force(&accel, &mut rng, 4000, "random soup");
     // The scene is dense enough that most rays hit something; a broken test would see none.
     assert!(hits > 2000, "only {hits} of 4000 rays hit");
+}
+
+#[test]
+fn every_stack_size_matches_brute_force() {
+    let mut rng = Rng(0x5eed_0002);
+    let small = Accel::new(random_scene(&mut rng, 300, 20));
+    assert_eq!(small.stack, StackKind::Small, "depth {}", small.depth);
+    let hits = check_against_brute_force(&small, &mut rng, 2000, "small scene");
+    assert!(hits > 200, "only {hits} of 2000 rays hit");
+    let large = Accel::new(random_scene(&mut rng, 200_000, 0));
+    assert_eq!(large.stack, StackKind::Fixed, "depth {}", large.depth);
+    let hits = check_against_brute_force(&large, &mut rng, 200, "large scene");
+    assert!(hits > 100, "only {hits} of 200 rays hit");
 }
 
 #[test]
@@ -161,8 +175,9 @@ fn deep_trees_use_the_heap_stack() {
         .expect("valid"),
     )];
     let accel = Accel::new(shapes);
-    assert!(
-        accel.deep,
+    assert_eq!(
+        accel.stack,
+        StackKind::Heap,
         "depth {} fits the fixed stack; pick a deeper case",
         accel.depth
     );

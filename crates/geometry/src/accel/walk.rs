@@ -13,6 +13,34 @@ use obvhs::faststack::FastStack;
 /// entry per tree level below the root.
 pub(crate) const FIXED_STACK: usize = 32;
 
+/// Capacity of the stack for shallow trees (small scenes), where zeroing the 32-entry stack for
+/// every ray is a measurable part of a ray's cost.
+pub(crate) const SMALL_STACK: usize = 8;
+
+/// Which traversal stack a tree needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum StackKind {
+    /// [`SMALL_STACK`] entries on the call stack.
+    Small,
+    /// [`FIXED_STACK`] entries on the call stack.
+    Fixed,
+    /// On the heap, sized to the tree (thousands of exactly coincident primitives).
+    Heap,
+}
+
+impl StackKind {
+    /// The smallest stack that holds the traversal of a tree `depth` levels deep.
+    pub fn for_depth(depth: usize) -> Self {
+        if depth + 1 < SMALL_STACK {
+            StackKind::Small
+        } else if depth + 1 < FIXED_STACK {
+            StackKind::Fixed
+        } else {
+            StackKind::Heap
+        }
+    }
+}
+
 /// Traversal state, field for field what `obvhs::traverse!` reads and writes.
 pub(crate) struct Walk<S> {
     pub stack: S,
