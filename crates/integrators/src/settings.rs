@@ -19,9 +19,10 @@ pub enum LightSelectionMode {
     Uniform,
     /// Proportional to emitted power.
     Power,
-    /// Resampled importance sampling: `candidates` lights and points are drawn
-    /// power-proportionally, and one is kept with probability proportional to its unshadowed
-    /// contribution (a weighted reservoir), weighted by the unbiased contribution weight.
+    /// Resampled importance sampling: `candidates` lights are drawn power-proportionally, one
+    /// is kept with probability proportional to the irradiance it could deliver at the shading
+    /// point (a weighted reservoir), weighted by the unbiased contribution weight, and a point
+    /// is sampled on it.
     Ris {
         /// Number of candidates M (at least 1).
         candidates: u32,

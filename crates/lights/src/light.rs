@@ -1,7 +1,10 @@
 //! The closed set of emitter types, dispatched by enum.
 
-use crate::{ConstantEnvironment, LightSample, MeshAreaLight, PointLight, SphereAreaLight};
+use crate::{
+    ConstantEnvironment, LightSample, MeshAreaLight, PointLight, SphereAreaLight, mean_rgb,
+};
 use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
 
 /// Any emitter in a scene.
 #[derive(Clone, Debug)]
@@ -82,6 +85,29 @@ impl Light {
     #[inline]
     pub fn is_delta(&self) -> bool {
         matches!(self, Light::Point(_))
+    }
+
+    /// Irradiance (W m⁻², mean over channels) that the light could deliver at most, roughly, to a
+    /// surface at `p` with unit normal `n`, either side: power / (4π max(d², r²)) for a light
+    /// inside a sphere of radius r at distance d, times a bound on |cos θ| over that sphere; π
+    /// times the radiance for the environment. Zero only where the light cannot reach `p`'s
+    /// tangent plane from either side; the target of resampled light selection.
+    pub fn irradiance_estimate(&self, p: Vec3, n: Vec3) -> f32 {
+        let (center, radius) = match self {
+            Light::Mesh(l) => l.bounding_sphere(),
+            Light::Sphere(l) => (l.center, l.radius),
+            Light::Point(l) => (l.position, 0.0),
+            Light::Environment(l) => return PI * mean_rgb(l.radiance),
+        };
+        let to_center = center - p;
+        let d2 = to_center.length_squared();
+        let r2 = radius * radius;
+        if d2 <= r2 {
+            return self.power() / (4.0 * PI * r2.max(f32::MIN_POSITIVE));
+        }
+        let cos_center = to_center.dot(n).abs() / d2.sqrt();
+        let sin_max = (r2 / d2).sqrt();
+        self.power() / (4.0 * PI * d2) * (cos_center + sin_max).min(1.0)
     }
 
     /// Emitted power, W (mean over channels); the weight of power-proportional selection.

@@ -17,6 +17,8 @@ pub struct MeshAreaLight {
     area_distribution: CdfTable,
     total_area: f32,
     radiance: Vec3,
+    /// A sphere around every triangle: centre and radius (world units).
+    bounds: (Vec3, f32),
 }
 
 impl MeshAreaLight {
@@ -30,18 +32,29 @@ impl MeshAreaLight {
             .iter()
             .map(|[p0, p1, p2]| (*p1 - *p0).cross(*p2 - *p0).normalize_or_zero())
             .collect();
+        let (low, high) = triangles.iter().flatten().fold(
+            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+            |(low, high), &p| (low.min(p), high.max(p)),
+        );
+        let bounds = (0.5 * (low + high), 0.5 * (high - low).length());
         Some(Self {
             triangles,
             normals,
             area_distribution,
             total_area,
             radiance,
+            bounds,
         })
     }
 
     /// Emitted radiance, W m⁻² sr⁻¹ (RGB).
     pub fn radiance(&self) -> Vec3 {
         self.radiance
+    }
+
+    /// A sphere (centre, radius in world units) that contains the whole mesh.
+    pub fn bounding_sphere(&self) -> (Vec3, f32) {
+        self.bounds
     }
 
     /// Total surface area, world units squared.

@@ -154,3 +154,44 @@ fn tiny_far_sphere_stays_finite_at_u_extremes() {
         assert!(s.wi.x > 0.999_999, "sample left the cone: {s:?}");
     }
 }
+
+#[test]
+fn irradiance_estimate_is_exact_facing_a_sphere_and_never_zero_where_light_arrives() {
+    // Facing the centre, power / (4π d²) is exactly π sin²θ_max for a sphere of radiance 1.
+    for (radius, distance) in [(1.0_f32, 3.0_f32), (1e-3, 10.0)] {
+        let light = sphere_light(Vec3::new(0.0, 0.0, distance), radius);
+        let estimate = light.irradiance_estimate(Vec3::ZERO, Vec3::Z);
+        let exact = PI * (radius / distance).powi(2);
+        assert!(
+            (estimate - exact).abs() < 1e-4 * exact,
+            "{estimate} vs {exact}"
+        );
+    }
+    // Lights just above the tangent plane, on either side, must keep a positive estimate
+    // wherever some of their directions have a non-zero cosine (resampling needs it).
+    let mut rng = Rng::new(5);
+    for _ in 0..1000 {
+        let center = Vec3::new(
+            rng.next_f32() - 0.5,
+            rng.next_f32() - 0.5,
+            rng.next_f32() - 0.5,
+        ) * 4.0;
+        let radius = 0.5 * rng.next_f32();
+        let light = sphere_light(center, radius);
+        let n = Vec3::Z;
+        let sample = light.sample_li(Vec3::ZERO, Vec2::new(rng.next_f32(), rng.next_f32()));
+        if let Some(sample) = sample
+            && sample.wi.dot(n).abs() > 0.0
+        {
+            assert!(
+                light.irradiance_estimate(Vec3::ZERO, n) > 0.0,
+                "centre {center}, radius {radius}: light arrives but the estimate is 0"
+            );
+        }
+    }
+    let environment = Light::Environment(lights::ConstantEnvironment {
+        radiance: Vec3::splat(2.0),
+        scene_radius: 10.0,
+    });
+    assert!((environment.irradiance_estimate(Vec3::ZERO, Vec3::Z) - 2.0 * PI).abs() < 1e-5);
+}
