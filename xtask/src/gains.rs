@@ -17,6 +17,7 @@ use render::driver::{RenderBudget, RenderOptions};
 use render::image::Image;
 use render::metrics::{relmse, relmse_per_pixel};
 use render::session::{film_filter, render_scene};
+use render::technique::RIS_CANDIDATES;
 use render::technique::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use scene::{BsdfDesc, RenderScene};
@@ -312,7 +313,12 @@ fn light_selection_on_many_lights(root: &Path) -> Result<Vec<Claim>, String> {
     for (label, selection) in [
         ("uniform", LightSelectionMode::Uniform),
         ("power", LightSelectionMode::Power),
-        ("RIS 8", LightSelectionMode::Ris { candidates: 8 }),
+        (
+            "RIS",
+            LightSelectionMode::Ris {
+                candidates: RIS_CANDIDATES,
+            },
+        ),
     ] {
         let settings = PathSettings {
             light_selection: selection,

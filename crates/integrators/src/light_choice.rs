@@ -74,11 +74,28 @@ fn evaluate(
     })
 }
 
+/// `u` moved into the `k`-th of `count` equal strata of [0, 1): the `count` values are spread
+/// evenly, and move with `u` (so a stratified or blue-noise `u` stays so).
+fn stratum(u: f32, k: u32, count: u32) -> f32 {
+    let shifted = u + k as f32 / count as f32;
+    let wrapped = if shifted >= 1.0 {
+        shifted - 1.0
+    } else {
+        shifted
+    };
+    wrapped.min(1.0 - f32::EPSILON / 2.0)
+}
+
 /// RIS over lights: `count` candidate lights from the power-proportional source, one kept by a
 /// weighted reservoir with target p̂ = [`Light::irradiance_estimate`] at the shading point,
-/// then one point sampled on it with `u_point`. The reservoir's W = Σ w / (M · p̂(y)) estimates
-/// 1 / P(light y) without bias wherever p̂ > 0, which holds wherever a light can contribute; so
-/// the returned weight is W / pdf_solid_angle of the point. A candidate costs a distance and a
+/// then one point sampled on it with `u_point`. The candidates are stratified: candidate k uses
+/// `u_choice` shifted into the k-th of M strata of the source's CDF, so together they cover
+/// the lights evenly and follow the sampler's stratification of `u_choice`. Candidate k then
+/// has density p_k = M · pmf on its stratum; with the balance heuristic over the M strata
+/// (generalized RIS) each resampling weight is p̂ / (M · pmf), so the reservoir's
+/// W = Σ w / p̂(y) with w = p̂ / pmf is the usual W = Σ w / (M · p̂(y)) and estimates
+/// 1 / P(light y) without bias wherever p̂ > 0, which holds wherever a light can contribute; the
+/// returned weight is W / pdf_solid_angle of the point. A candidate costs a distance and a
 /// dot product, not a light sample: sampling points for every candidate (resampling points by
 /// their exact unshadowed contribution) cut the error less than it cost in time.
 fn resample(
@@ -94,8 +111,9 @@ fn resample(
     let p = surface.hit.p;
     let n = surface.frame.n;
     let mut reservoir = Reservoir::new();
-    for _ in 0..count.max(1) {
-        let (index, pmf) = source.select(rng.next_f32());
+    let count = count.max(1);
+    for k in 0..count {
+        let (index, pmf) = source.select(stratum(u_choice, k, count));
         let target = lights[index].irradiance_estimate(p, n);
         reservoir.update((index, target), target / pmf, rng.next_f32());
     }

@@ -9,8 +9,11 @@ use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
 use sampling::sampler::SamplerKind;
 use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
 
-/// Candidates per RIS light choice in the `ris` preset and in `auto`.
-pub const RIS_CANDIDATES: u32 = 8;
+/// Candidates per RIS light choice in the `ris` preset and in `auto`. Measured on the
+/// many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
+/// candidates 1.41x with the independent sampler and 1.87x with blue noise, 8 candidates 1.34x
+/// and 1.64x (each candidate costs about 4% of a path there).
+pub const RIS_CANDIDATES: u32 = 4;
 
 /// With at least this many lights, `auto` selects lights by RIS rather than by power.
 pub const AUTO_RIS_MIN_LIGHTS: usize = 16;
