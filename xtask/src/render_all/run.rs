@@ -112,7 +112,8 @@ pub fn render_all(root: &Path, args: &[String]) -> Result<bool, String> {
 
 /// Renders `configuration` for about `seconds` and measures it against `reference`.
 ///
-/// A pilot render of a tenth of the budget measures the configuration's samples per second;
+/// A pilot render of a tenth of the budget (at least 0.05 s, so that thread start-up does not
+/// dominate it) measures the configuration's samples per second;
 /// the measured render then asks for the whole number of samples per pixel that fits the
 /// budget, so stratified and blue-noise samplers lay out their complete pattern for exactly the
 /// samples they take (a time budget alone could stop anywhere inside one). Its actual time is
@@ -140,7 +141,7 @@ fn measure(
     let pilot = render(
         RenderBudget {
             max_spp: None,
-            max_seconds: Some(0.1 * seconds),
+            max_seconds: Some((0.1 * seconds).max(0.05)),
         },
         TIME_BUDGET_NOMINAL_SPP,
     )?;
