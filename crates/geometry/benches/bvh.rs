@@ -11,7 +11,7 @@ mod common;
 use std::hint::black_box;
 use std::time::Duration;
 
-use common::{Pcg32, icosphere};
+use common::Pcg32;
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use geometry::{Accel, Ray, Shape, TriangleMesh};
 use glam::Vec3;
@@ -23,7 +23,7 @@ use obvhs::triangle::Triangle;
 /// Rays per measured iteration.
 const RAYS: usize = 20_000;
 
-/// The meshes: (name, icosphere subdivision level). Level 6 has 81,920 triangles, level 8
+/// The meshes: (name subdivision level). Level 6 has 81,920 triangles, level 8
 /// has 1,310,720.
 const MESHES: [(&str, u32); 2] = [("82k", 6), ("1m", 8)];
 
@@ -50,7 +50,7 @@ fn build(c: &mut Criterion) {
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(5));
     for (name, level) in MESHES {
-        let mesh = icosphere(level);
+        let mesh = TriangleMesh::icosphere(level);
         group.throughput(Throughput::Elements(mesh.triangle_count() as u64));
         group.bench_function(BenchmarkId::new("icosphere", name), |b| {
             b.iter_batched(
@@ -82,7 +82,7 @@ fn stock_bvh(mesh: &TriangleMesh) -> (obvhs::cwbvh::CwBvh, Vec<Triangle>) {
 fn trace(c: &mut Criterion) {
     let rays = rays();
     for (name, level) in MESHES {
-        let mesh = icosphere(level);
+        let mesh = TriangleMesh::icosphere(level);
         let accel = Accel::new(vec![Shape::Mesh(mesh.clone())]);
         let (stock, tris) = stock_bvh(&mesh);
 

@@ -37,6 +37,7 @@
 mod aabb;
 mod accel;
 mod hit;
+mod icosphere;
 mod mesh;
 mod offset;
 mod ray;

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{Pcg32, icosphere, transformed, triangle_soup};
+use common::{Pcg32, transformed, triangle_soup};
 use geometry::{Accel, Hit, Ray, Shape, Sphere, TriangleMesh};
 use glam::{Vec2, Vec3};
 
@@ -65,7 +65,7 @@ fn random_scene(rng: &mut Pcg32) -> Vec<Shape> {
         })
     }));
     shapes.push(Shape::Mesh(transformed(
-        &icosphere(2),
+        &TriangleMesh::icosphere(2),
         0.3,
         Vec3::new(0.2, -0.4, 0.1),
     )));

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{Pcg32, icosphere, transformed};
+use common::{Pcg32, transformed};
 use geometry::{Accel, Hit, Ray, Shape, Sphere, TriangleMesh};
 use glam::Vec3;
 
@@ -72,7 +72,7 @@ fn objects(placement: &Placement) -> [(&'static str, Shape); 2] {
         (
             "mesh",
             Shape::Mesh(transformed(
-                &icosphere(3),
+                &TriangleMesh::icosphere(3),
                 placement.scale,
                 placement.offset,
             )),

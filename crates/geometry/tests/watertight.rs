@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{Pcg32, icosphere, subdivided_cube, transformed};
+use common::{Pcg32, subdivided_cube, transformed};
 use geometry::{Accel, Ray, Shape, TriangleMesh};
 use glam::Vec3;
 
@@ -62,14 +62,14 @@ fn moved_and_scaled_cube_has_no_cracks() {
 #[test]
 fn icosphere_has_no_cracks() {
     // The icosphere's faces lie at least cos(half the icosahedron's edge angle) from its centre.
-    shoot_at_edges(icosphere(3), Vec3::ZERO, 0.7, 30_000, 3);
+    shoot_at_edges(TriangleMesh::icosphere(3), Vec3::ZERO, 0.7, 30_000, 3);
 }
 
 #[test]
 fn large_moved_icosphere_has_no_cracks() {
     let offset = Vec3::new(-2.0e3, 5.0e2, 1.0e3);
     shoot_at_edges(
-        transformed(&icosphere(2), 100.0, offset),
+        transformed(&TriangleMesh::icosphere(2), 100.0, offset),
         offset,
         70.0,
         20_000,

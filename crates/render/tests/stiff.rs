@@ -13,6 +13,7 @@ mod common;
 use common::{
     Configuration, Target, ZTest, configurations, film_mean, load_xml, mis_power, render, z_test,
 };
+use geometry::TriangleMesh;
 use glam::{UVec2, Vec2, Vec3};
 use integrators::RussianRoulette;
 use render::film::Film;
@@ -425,72 +426,18 @@ fn a_plane_seen_at_grazing_angles_reflects_the_sky_exactly() {
     every_configuration_is_exact(&scene, "grazing plane", 32, Vec3::splat(0.5));
 }
 
-/// An icosphere of unit radius subdivided `levels` times, with unit vertex normals, as OBJ text.
-fn icosphere_obj(levels: u32) -> String {
-    let t = (1.0 + 5.0_f32.sqrt()) / 2.0;
-    let mut vertices: Vec<Vec3> = [
-        (-1.0, t, 0.0),
-        (1.0, t, 0.0),
-        (-1.0, -t, 0.0),
-        (1.0, -t, 0.0),
-        (0.0, -1.0, t),
-        (0.0, 1.0, t),
-        (0.0, -1.0, -t),
-        (0.0, 1.0, -t),
-        (t, 0.0, -1.0),
-        (t, 0.0, 1.0),
-        (-t, 0.0, -1.0),
-        (-t, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
-    .collect();
-    let mut faces: Vec<[usize; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..levels {
-        let mut next = Vec::new();
-        let mut midpoint = std::collections::HashMap::new();
-        let mut mid = |a: usize, b: usize, vertices: &mut Vec<Vec3>| {
-            *midpoint.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                vertices.push((vertices[a] + vertices[b]).normalize());
-                vertices.len() - 1
-            })
-        };
-        for [a, b, c] in faces {
-            let (ab, bc, ca) = (
-                mid(a, b, &mut vertices),
-                mid(b, c, &mut vertices),
-                mid(c, a, &mut vertices),
-            );
-            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        faces = next;
-    }
+/// [`TriangleMesh::icosphere`] with `subdivisions` as OBJ text, with its vertex normals.
+fn icosphere_obj(subdivisions: u32) -> String {
+    let mesh = TriangleMesh::icosphere(subdivisions);
+    let normals = mesh
+        .normals
+        .as_ref()
+        .expect("the icosphere has vertex normals");
     let mut obj = String::new();
-    for v in &vertices {
-        obj += &format!("v {} {} {}\nvn {} {} {}\n", v.x, v.y, v.z, v.x, v.y, v.z);
+    for (p, n) in mesh.positions.iter().zip(normals) {
+        obj += &format!("v {} {} {}\nvn {} {} {}\n", p.x, p.y, p.z, n.x, n.y, n.z);
     }
-    for [a, b, c] in faces {
+    for [a, b, c] in &mesh.indices {
         obj += &format!("f {0}//{0} {1}//{1} {2}//{2}\n", a + 1, b + 1, c + 1);
     }
     obj
