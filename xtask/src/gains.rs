@@ -13,7 +13,7 @@
 
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
-use render::driver::{RenderBudget, RenderOptions};
+use render::driver::RenderOptions;
 use render::image::Image;
 use render::metrics::{relmse, relmse_per_pixel};
 use render::session::{film_filter, render_scene};
@@ -115,13 +115,7 @@ impl Subject {
         let mut images = Vec::new();
         let mut seconds = Vec::new();
         for &seed in seeds {
-            let plan = RenderPlan {
-                transport,
-                sampler,
-                seed,
-                budget: RenderBudget::spp(spp),
-                sampler_spp: spp,
-            };
+            let plan = RenderPlan::fixed_spp(transport, sampler, seed, spp);
             let (output, _) = render_scene(&self.scene, &plan, &filter, &RenderOptions::quiet())
                 .map_err(|e| e.to_string())?;
             if output.non_finite.nan + output.non_finite.inf > 0 {

@@ -56,6 +56,19 @@ pub struct RenderPlan {
     pub sampler_spp: u32,
 }
 
+impl RenderPlan {
+    /// Exactly `spp` samples per pixel, the sampler's pattern laid out for them.
+    pub fn fixed_spp(transport: Transport, sampler: SamplerKind, seed: u32, spp: u32) -> Self {
+        Self {
+            transport,
+            sampler,
+            seed,
+            budget: RenderBudget::spp(spp),
+            sampler_spp: spp,
+        }
+    }
+}
+
 /// The plan for rendering `desc` (with `features`) as `args` ask.
 pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> RenderPlan {
     let max_depth = match args.max_depth {

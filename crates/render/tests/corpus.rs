@@ -5,8 +5,11 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
+mod binary;
+
+use binary::wait_at_most;
 use render::image::Image;
 
 /// Longest a case may run (debug builds included) before it counts as a hang.
@@ -65,7 +68,7 @@ fn read_manifest() -> Vec<Case> {
 
 /// Runs strata with `args` in the corpus folder under the limits; returns (status, stderr).
 fn run_limited(args: &[String]) -> (Option<i32>, String) {
-    let mut child = Command::new("sh")
+    let child = Command::new("sh")
         .arg("-c")
         .arg(format!(
             "ulimit -v {ADDRESS_SPACE_KIB} && exec \"$0\" \"$@\""
@@ -78,27 +81,7 @@ fn run_limited(args: &[String]) -> (Option<i32>, String) {
         .stderr(Stdio::piped())
         .spawn()
         .expect("spawn strata");
-    let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("wait") {
-            break status;
-        }
-        if start.elapsed() > TIME_LIMIT {
-            let _ = child.kill();
-            let _ = child.wait();
-            return (None, format!("still running after {TIME_LIMIT:?}"));
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    };
-    let mut stderr = String::new();
-    use std::io::Read;
-    child
-        .stderr
-        .take()
-        .expect("stderr")
-        .read_to_string(&mut stderr)
-        .expect("read stderr");
-    (status.code(), stderr)
+    wait_at_most(child, TIME_LIMIT).unwrap_or_else(|still_running| (None, still_running))
 }
 
 /// Checks one case; returns a description of what went wrong.

@@ -46,7 +46,7 @@ fn ctrl_c_writes_a_complete_image_of_the_samples_done_and_resume_finishes_it_exa
     let child = spawn_strata(&args);
     std::thread::sleep(Duration::from_millis(1500));
     interrupt(&child);
-    let (status, stderr) = wait_at_most(child, STOP_LIMIT);
+    let (status, stderr) = wait_at_most(child, STOP_LIMIT).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(status, Some(130), "interrupted renders exit 130: {stderr}");
     assert!(stderr.contains("interrupted: wrote"), "{stderr}");
 
@@ -108,7 +108,8 @@ fn a_second_ctrl_c_quits_at_once_without_writing() {
     interrupt(&child);
     std::thread::sleep(Duration::from_millis(200));
     interrupt(&child);
-    let (status, stderr) = wait_at_most(child, Duration::from_secs(5));
+    let (status, stderr) =
+        wait_at_most(child, Duration::from_secs(5)).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(status, Some(130), "{stderr}");
     assert!(!out.exists(), "the second Ctrl-C must not write the image");
 }

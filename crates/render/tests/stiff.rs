@@ -25,10 +25,19 @@ use std::path::Path;
 const SIZE: u32 = 32;
 const ALPHA: f64 = 0.01;
 const REQUIRED_PASS_FRACTION: f64 = 0.9975;
+/// Mitsuba's default near clip distance of the perspective camera.
+const NEAR_CLIP: f32 = 1e-2;
 
-/// A scene file: the integrator, a pinhole camera whose `to_world` is `camera` followed by
-/// `transform`, and `body`.
-fn scene_xml(max_depth: i32, hide_emitters: bool, camera: &str, fov: f32, body: &str) -> String {
+/// A scene file: the integrator, a pinhole camera with `to_world` elements `camera`, its field
+/// of view (degrees) and near clip distance, and `body`.
+fn scene_xml(
+    max_depth: i32,
+    hide_emitters: bool,
+    camera: &str,
+    fov: f32,
+    near_clip: f32,
+    body: &str,
+) -> String {
     format!(
         r#"<scene version="3.0.0">
     <integrator type="path">
@@ -37,6 +46,7 @@ fn scene_xml(max_depth: i32, hide_emitters: bool, camera: &str, fov: f32, body: 
     </integrator>
     <sensor type="perspective">
         <float name="fov" value="{fov}"/>
+        <float name="near_clip" value="{near_clip}"/>
         <transform name="to_world">{camera}</transform>
         <film type="hdrfilm">
             <integer name="width" value="{SIZE}"/>
@@ -88,14 +98,9 @@ fn room(light_edge: f32, radiance: f32, hide_emitters: bool, transform: &Transfo
         r#"<lookat origin="{}, {}, {}" target="{}, {}, {}" up="0, 1, 0"/>"#,
         origin.x, origin.y, origin.z, target.x, target.y, target.z
     );
-    // The near clip plane (Mitsuba's default 1e-2) scales with the room.
-    scene_xml(6, hide_emitters, &camera, 70.0, &body).replace(
-        r#"<float name="fov""#,
-        &format!(
-            r#"<float name="near_clip" value="{}"/><float name="fov""#,
-            1e-2 * transform.scale
-        ),
-    )
+    // The near clip plane scales with the room.
+    let near_clip = NEAR_CLIP * transform.scale;
+    scene_xml(6, hide_emitters, &camera, 70.0, near_clip, &body)
 }
 
 /// A similarity transform of the whole room: a uniform scale, then a translation.
@@ -196,7 +201,7 @@ fn albedo_one_sphere_in_a_white_sky_is_white_for_every_configuration() {
     <shape type="sphere"><float name="radius" value="1"/>
         <bsdf type="diffuse"><rgb name="reflectance" value="1"/></bsdf></shape>"#
     );
-    let xml = scene_xml(-1, false, FRONT_CAMERA, 40.0, &body);
+    let xml = scene_xml(-1, false, FRONT_CAMERA, 40.0, NEAR_CLIP, &body);
     let scene = load_xml(dir.path(), "white-sphere", &xml, SIZE);
     every_configuration_is_exact(&scene, "albedo-1 sphere", 64, Vec3::ONE);
 }
@@ -210,7 +215,7 @@ fn albedo_zero_furnace_shows_only_emission() {
         <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
         <emitter type="area"><rgb name="radiance" value="0.25, 0.5, 1"/></emitter></shape>"#;
     let camera = r#"<lookat origin="0.2, 0.1, 0" target="0, 0, -1" up="0, 1, 0"/>"#;
-    let xml = scene_xml(-1, false, camera, 60.0, body);
+    let xml = scene_xml(-1, false, camera, 60.0, NEAR_CLIP, body);
     let scene = load_xml(dir.path(), "black-furnace", &xml, SIZE);
     every_configuration_is_exact(&scene, "albedo-0 furnace", 16, Vec3::new(0.25, 0.5, 1.0));
 }
@@ -229,7 +234,7 @@ fn glass_slab(dir: &Path, ior: f32) -> RenderScene {
             <float name="ext_ior" value="1"/></bsdf>
     </shape>"#
     );
-    let xml = scene_xml(-1, false, FRONT_CAMERA, 40.0, &body);
+    let xml = scene_xml(-1, false, FRONT_CAMERA, 40.0, NEAR_CLIP, &body);
     load_xml(dir, &format!("slab-{ior}"), &xml, SIZE)
 }
 
@@ -421,7 +426,7 @@ fn a_plane_seen_at_grazing_angles_reflects_the_sky_exactly() {
         r#"<lookat origin="0, 1e-2, 0" target="0, {}, -1" up="0, 1, 0"/>"#,
         1e-2 - pitch.tan()
     );
-    let xml = scene_xml(-1, false, &camera, 10.0, &body);
+    let xml = scene_xml(-1, false, &camera, 10.0, NEAR_CLIP, &body);
     let scene = load_xml(dir.path(), "grazing-plane", &xml, SIZE);
     every_configuration_is_exact(&scene, "grazing plane", 32, Vec3::splat(0.5));
 }
@@ -456,7 +461,7 @@ fn a_smooth_normal_mesh_gains_no_energy_at_its_silhouette() {
     <shape type="obj"><string name="filename" value="sphere.obj"/>
         <bsdf type="diffuse"><rgb name="reflectance" value="1"/></bsdf></shape>"#
     );
-    let xml = scene_xml(-1, false, FRONT_CAMERA, 40.0, &body);
+    let xml = scene_xml(-1, false, FRONT_CAMERA, 40.0, NEAR_CLIP, &body);
     let scene = load_xml(dir.path(), "smooth-mesh", &xml, SIZE);
     let base = mis_power(None, false);
     for Configuration {
@@ -577,7 +582,7 @@ fn a_point_light_1e_4_above_a_plane_lights_it_as_the_inverse_square_law_says() {
         <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
     </shape>"#;
     let camera = r#"<lookat origin="0, 1, 0" target="0, 0, 0" up="0, 0, -1"/>"#;
-    let xml = scene_xml(2, false, camera, 30.0, body);
+    let xml = scene_xml(2, false, camera, 30.0, NEAR_CLIP, body);
     let scene = load_xml(dir.path(), "point-light", &xml, SIZE);
     // Positions as the scene holds them: relative to the camera, at the origin.
     let light = match scene.desc.emitters[0] {
@@ -676,7 +681,7 @@ fn degenerate_and_duplicate_triangles_change_nothing() {
         load_xml(
             dir.path(),
             mesh,
-            &scene_xml(4, false, camera, 45.0, &body),
+            &scene_xml(4, false, camera, 45.0, NEAR_CLIP, &body),
             SIZE,
         )
     };

@@ -95,16 +95,13 @@ fn run_binary(binary: &TestBinary, quick: bool) -> Result<Vec<TestResult>, Strin
     Ok(results)
 }
 
-/// One line per test, then its figures (or, for a failure, its message) indented below.
+/// One line per test that ran, then its figures (or, for a failure, its message) indented below.
 fn print_result(label: &str, result: &TestResult) {
     let verdict = match result.verdict {
         Verdict::Passed => "PASS",
         Verdict::Failed => "FAIL",
-        Verdict::Ignored => "skip",
+        Verdict::Ignored => return,
     };
-    if result.verdict == Verdict::Ignored {
-        return;
-    }
     println!("{verdict} {label}::{}", result.name);
     for line in &result.figures {
         println!("       {line}");

@@ -10,7 +10,7 @@
 use super::{SuiteScene, parse_scene_list, reference_path, scene_files};
 use integrators::{Mis, PathSettings};
 use render::atomic_write::write_bytes_atomically;
-use render::driver::{RenderBudget, RenderOptions};
+use render::driver::RenderOptions;
 use render::session::{film_filter, render_scene};
 use render::technique::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
@@ -71,13 +71,12 @@ pub fn refs(root: &Path, args: &[String]) -> Result<bool, String> {
             mis: Mis::Balance,
             ..suite.transport().mis()
         };
-        let plan = RenderPlan {
-            transport: Transport::Path(settings),
-            sampler: SamplerKind::Independent,
-            seed: REFERENCE_SEED,
-            budget: RenderBudget::spp(spp),
-            sampler_spp: spp,
-        };
+        let plan = RenderPlan::fixed_spp(
+            Transport::Path(settings),
+            SamplerKind::Independent,
+            REFERENCE_SEED,
+            spp,
+        );
         let filter = film_filter(suite.scene.desc.film.filter).map_err(|e| e.to_string())?;
         let (output, _) = render_scene(&suite.scene, &plan, &filter, &RenderOptions::quiet())
             .map_err(|e| e.to_string())?;

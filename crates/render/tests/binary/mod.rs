@@ -64,8 +64,8 @@ pub fn interrupt(child: &Child) {
 }
 
 /// Waits for `child` at most `limit`; its exit code (`None` if a signal ended it) and standard
-/// error. Panics (after killing it) if it is still running.
-pub fn wait_at_most(mut child: Child, limit: Duration) -> (Option<i32>, String) {
+/// error, or an error saying it was still running (it is killed then).
+pub fn wait_at_most(mut child: Child, limit: Duration) -> Result<(Option<i32>, String), String> {
     let start = Instant::now();
     loop {
         if let Some(status) = child.try_wait().expect("wait") {
@@ -77,12 +77,12 @@ pub fn wait_at_most(mut child: Child, limit: Duration) -> (Option<i32>, String) 
                 .expect("stderr")
                 .read_to_string(&mut stderr)
                 .expect("read stderr");
-            return (status.code(), stderr);
+            return Ok((status.code(), stderr));
         }
         if start.elapsed() > limit {
             let _ = child.kill();
             let _ = child.wait();
-            panic!("strata still running after {limit:?}");
+            return Err(format!("strata still running after {limit:?}"));
         }
         std::thread::sleep(Duration::from_millis(10));
     }

@@ -6,7 +6,7 @@
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
-use render::driver::{RenderBudget, RenderOptions};
+use render::driver::RenderOptions;
 use render::film::Film;
 use render::session::{film_filter, render_scene};
 use render::technique::{RenderPlan, Transport};
@@ -62,13 +62,7 @@ pub fn render(
     seed: u32,
     label: &str,
 ) -> Film {
-    let plan = RenderPlan {
-        transport,
-        sampler,
-        seed,
-        budget: RenderBudget::spp(spp),
-        sampler_spp: spp,
-    };
+    let plan = RenderPlan::fixed_spp(transport, sampler, seed, spp);
     let filter = film_filter(scene.desc.film.filter).expect("valid filter");
     let (output, _) =
         render_scene(scene, &plan, &filter, &RenderOptions::quiet()).expect("renders");
