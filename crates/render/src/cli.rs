@@ -3,7 +3,7 @@
 //! ```text
 //! strata render SCENE.xml --out OUT.exr [--spp N] [--time SECONDS]
 //!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise]
-//!               [--rr on|off] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
+//!               [--rr on|off] [--adaptive] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
 //!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
 //! strata diff A.exr B.exr
 //! strata merge A.exr B.exr … --out OUT.exr [--png OUT.png]
@@ -111,6 +111,12 @@ pub struct RenderArgs {
     /// Russian roulette on or off, on top of the preset.
     #[arg(long, value_enum)]
     pub rr: Option<Switch>,
+    /// Adaptive sampling: a pilot render (1/16 of the budget, at most 16 samples per pixel, not
+    /// part of the image) estimates each pixel's relative noise, and pixels get samples in
+    /// proportion to it, which minimises the relative MSE. --spp is then the mean over pixels,
+    /// the pilot's samples included. Not with --state or --resume.
+    #[arg(long, conflicts_with_all = ["state", "resume"])]
+    pub adaptive: bool,
     /// Maximum number of path vertices after the camera, as in Mitsuba (1: emitters seen
     /// directly; 2: adds direct lighting).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
@@ -229,8 +235,10 @@ mod tests {
             "o.png",
             "--stats",
             "s.json",
+            "--adaptive",
         ]);
         assert_eq!(r.scene, Path::new("scene.xml"));
+        assert!(r.adaptive);
         assert_eq!(r.out, Path::new("o.exr"));
         assert_eq!((r.spp, r.time), (Some(64), Some(0.5)));
         assert_eq!(r.integrator, IntegratorPreset::Mis);
@@ -259,6 +267,7 @@ mod tests {
             (None, None, None, None, None)
         );
         assert_eq!((r.state, r.resume), (None, None));
+        assert!(!r.adaptive);
     }
 
     #[test]
@@ -324,6 +333,24 @@ mod tests {
             &["render", "s.xml", "--out", "o.exr", "--threads", "0"],
             &["render", "s.xml", "--out", "o.exr", "--width", "64"],
             &["render", "s.xml", "--out", "o.exr", "--frobnicate"],
+            &[
+                "render",
+                "s.xml",
+                "--out",
+                "o.exr",
+                "--adaptive",
+                "--state",
+                "a.state",
+            ],
+            &[
+                "render",
+                "s.xml",
+                "--out",
+                "o.exr",
+                "--adaptive",
+                "--resume",
+                "a.state",
+            ],
             &["diff", "a.exr"],
             &["explode"],
         ] {

@@ -14,6 +14,7 @@ use std::time::Instant;
 use glam::{UVec2, Vec3};
 use rayon::prelude::*;
 
+pub use crate::adaptive::Allocation;
 pub use crate::budget::{BudgetError, RenderBudget};
 use crate::film::{Film, PixelSum};
 use crate::progress::Progress;
@@ -34,6 +35,10 @@ pub struct RenderOptions {
     /// where they stopped, so the result has the same bits as one render of all the samples.
     /// The budget's `max_spp` counts these samples too; its `max_seconds` counts only this run.
     pub resume: Option<Arc<ResumePoint>>,
+    /// How many samples each pixel gets (adaptive sampling); `None` gives every pixel the
+    /// budget's samples per pixel. With an allocation the budget's `max_spp` is the mean over
+    /// pixels, and pixel `p` takes sample indices `0 .. allocation.samples(p, mean)`.
+    pub allocation: Option<Arc<Allocation>>,
 }
 
 impl RenderOptions {
@@ -44,6 +49,7 @@ impl RenderOptions {
             tile_size: None,
             stop: None,
             resume: None,
+            allocation: None,
         }
     }
 }
@@ -109,6 +115,9 @@ pub struct RenderOutput {
     pub threads: usize,
     /// Samples left out of the film as NaN or infinite.
     pub non_finite: NonFiniteCounts,
+    /// Samples per pixel of an adaptive-sampling pilot, rendered but not in the film (0 without
+    /// one); counted in `spp`, `passes`, `seconds` and `non_finite`.
+    pub pilot_spp: u32,
 }
 
 /// Renders a `width × height` image until `budget` is spent, on the current rayon thread pool
@@ -133,9 +142,12 @@ where
 {
     budget.validate()?;
     let threads = rayon::current_num_threads();
+    // Allocated sample counts make tiles' work unequal: four times as many tiles keeps the
+    // threads evenly busy to the end of each pass.
+    let balancing = if options.allocation.is_some() { 4 } else { 1 };
     let tile_size = options
         .tile_size
-        .unwrap_or_else(|| tile_size_for(width, height, threads));
+        .unwrap_or_else(|| tile_size_for(width, height, threads * balancing));
     let tiles = tiles(width, height, tile_size);
     let (mut film, resumed_spp, mut passes, mut non_finite) = match options.resume.as_deref() {
         None => (Film::new(width, height), 0, 0, NonFiniteCounts::default()),
@@ -190,7 +202,18 @@ where
                 .map_or(0.0, |max| start.elapsed().as_secs_f64() / max);
             progress.set_fraction(spp_fraction.max(time_fraction));
         };
-        let pass = render_pass(&mut film, &tiles, spp, pass_spp, &init, &sample, &report);
+        let pass = render_pass(
+            &mut film,
+            &tiles,
+            PassSamples {
+                first: spp,
+                count: pass_spp,
+                allocation: options.allocation.as_deref(),
+            },
+            &init,
+            &sample,
+            &report,
+        );
         non_finite.merge(pass);
         spp += pass_spp;
         passes += 1;
@@ -208,19 +231,43 @@ where
         seconds,
         threads,
         non_finite,
+        pilot_spp: 0,
     })
 }
 
-/// Renders samples `first_sample .. first_sample + spp` of every pixel of `tiles` into `film`,
-/// in parallel over the tiles, calling `report(fraction of the pass done)` as tiles finish.
-/// Returns the samples left out as non-finite. The film's sums are continued, not replaced, so
-/// consecutive passes give the same bits as one pass of all their samples. The tiles must not
-/// overlap (those from [`crate::tiles::tiles`] never do).
+/// The samples of one pass: samples per pixel `first .. first + count`, or with an allocation
+/// the samples that take each pixel from its count at mean `first` to its count at mean
+/// `first + count`.
+#[derive(Clone, Copy, Debug)]
+pub struct PassSamples<'a> {
+    /// Samples per pixel (the mean, with an allocation) done before this pass.
+    pub first: u32,
+    /// Samples per pixel (the mean, with an allocation) this pass adds.
+    pub count: u32,
+    /// Per-pixel sample counts, if not uniform.
+    pub allocation: Option<&'a Allocation>,
+}
+
+impl PassSamples<'_> {
+    /// The sample indices of `pixel` in this pass.
+    pub fn indices(&self, pixel: UVec2) -> std::ops::Range<u32> {
+        let end = self.first.saturating_add(self.count);
+        match self.allocation {
+            None => self.first..end,
+            Some(a) => a.samples(pixel, self.first)..a.samples(pixel, end),
+        }
+    }
+}
+
+/// Renders the `samples` of every pixel of `tiles` into `film`, in parallel over the tiles,
+/// calling `report(fraction of the pass done)` as tiles finish. Returns the samples left out as
+/// non-finite. The film's sums are continued, not replaced, so consecutive passes give the same
+/// bits as one pass of all their samples. The tiles must not overlap (those from
+/// [`crate::tiles::tiles`] never do).
 pub fn render_pass<S, I, F>(
     film: &mut Film,
     tiles: &[Tile],
-    first_sample: u32,
-    spp: u32,
+    samples: PassSamples<'_>,
     init: &I,
     sample: &F,
     report: &(dyn Fn(f64) + Sync),
@@ -229,7 +276,6 @@ where
     I: Fn() -> S + Sync + Send,
     F: Fn(&mut S, UVec2, u32) -> Vec3 + Sync + Send,
 {
-    let end = first_sample.saturating_add(spp);
     let done = AtomicUsize::new(0);
     let shared: &Film = film;
     let results: Vec<(Vec<PixelSum>, NonFiniteCounts)> = tiles
@@ -240,7 +286,7 @@ where
                 .pixels()
                 .map(|pixel| {
                     let mut sums = *shared.pixel(pixel);
-                    for index in first_sample..end {
+                    for index in samples.indices(pixel) {
                         let value = sample(scratch, pixel, index);
                         if value.is_finite() {
                             sums.add(value);

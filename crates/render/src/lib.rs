@@ -21,6 +21,7 @@
 
 #![warn(missing_docs)]
 
+pub mod adaptive;
 pub mod atomic_write;
 pub mod budget;
 pub mod cli;

@@ -59,10 +59,16 @@ pub fn rmse(a: &Image, b: &Image) -> Result<f64, SizeMismatch> {
     mean_over_channels(a, b, |va, vb| (va - vb).powi(2)).map(f64::sqrt)
 }
 
+/// The ε of relative errors `(a − b)² / (b² + ε)`: keeps black reference pixels from dividing
+/// by zero (radiance units squared).
+pub const RELMSE_EPSILON: f64 = 0.01;
+
 /// Relative mean square error of `a` against the reference `b`:
 /// `mean((a − b)² / (b² + 0.01))` over pixels and channels.
 pub fn relmse(a: &Image, reference: &Image) -> Result<f64, SizeMismatch> {
-    mean_over_channels(a, reference, |va, vb| (va - vb).powi(2) / (vb * vb + 0.01))
+    mean_over_channels(a, reference, |va, vb| {
+        (va - vb).powi(2) / (vb * vb + RELMSE_EPSILON)
+    })
 }
 
 /// Each pixel's relative squared error against the reference, `mean over channels of
@@ -82,7 +88,7 @@ pub fn relmse_per_pixel(a: &Image, reference: &Image) -> Result<Vec<f64>, SizeMi
             (0..3)
                 .map(|c| {
                     let (va, vb) = (f64::from(pa[c]), f64::from(pb[c]));
-                    (va - vb).powi(2) / (vb * vb + 0.01)
+                    (va - vb).powi(2) / (vb * vb + RELMSE_EPSILON)
                 })
                 .sum::<f64>()
                 / 3.0

@@ -82,6 +82,9 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
     if scene.camera.has_lens() {
         stats.techniques.push("thin-lens".to_string());
     }
+    if output.pilot_spp > 0 {
+        stats.techniques.push("adaptive".to_string());
+    }
     if stats.nan_count > 0 || stats.inf_count > 0 {
         eprintln!(
             "warning: {} NaN and {} infinite samples were left out of the image",

@@ -1,7 +1,8 @@
 //! One render of a built scene as planned, on the current thread pool: the part of
 //! `strata render` that tests and tools call in-process.
 
-use crate::driver::{BudgetError, RenderOptions, RenderOutput, render};
+use crate::adaptive::{Allocation, pilot_seed, split_budget};
+use crate::driver::{BudgetError, RenderBudget, RenderOptions, RenderOutput, render};
 use crate::filter::{Filter, FilterError};
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
@@ -10,7 +11,7 @@ use sampling::Sampler;
 use sampling::sampler::{BlueNoiseSampler, IndependentSampler, SamplerKind, StratifiedSampler};
 use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Arc, Mutex, PoisonError};
 
 /// The light transport of a render, built for its world.
 enum Integrator {
@@ -78,9 +79,61 @@ pub fn render_scene_recording(
 }
 
 /// Renders the image on the current thread pool, each worker telling its rays to a fresh `T`
-/// that is handed to `finish` when the worker is done. The per-sample code is compiled once per
-/// sampler type, so that sampling is inlined into the integrator rather than dispatched per call.
+/// that is handed to `finish` when the worker is done; with adaptive sampling, first the pilot
+/// (whose rays are told too) and then the image with the pilot's allocation.
 fn render_image<T: RayTally + Default + Send>(
+    scene: &RenderScene,
+    plan: &RenderPlan,
+    filter: &Filter,
+    options: &RenderOptions,
+    finish: &(dyn Fn(&mut T) + Sync),
+) -> Result<RenderOutput, BudgetError> {
+    let split = if plan.adaptive && options.resume.is_none() {
+        split_budget(&plan.budget)
+    } else {
+        None
+    };
+    let Some((pilot_budget, image_budget)) = split else {
+        return render_sampled(scene, plan, filter, options, finish);
+    };
+    plan.budget.validate()?;
+    let pilot_spp = pilot_budget.max_spp.unwrap_or(1);
+    let pilot_plan = RenderPlan {
+        seed: pilot_seed(plan.seed),
+        budget: pilot_budget,
+        sampler_spp: pilot_spp,
+        ..*plan
+    };
+    let pilot = render_sampled(scene, &pilot_plan, filter, options, finish)?;
+    if pilot.interrupted {
+        return Ok(pilot);
+    }
+    let image_plan = RenderPlan {
+        budget: RenderBudget {
+            max_seconds: image_budget
+                .max_seconds
+                .map(|s| (s - pilot.seconds).max(0.0)),
+            ..image_budget
+        },
+        sampler_spp: image_budget.max_spp.unwrap_or(plan.sampler_spp),
+        ..*plan
+    };
+    let image_options = RenderOptions {
+        allocation: Some(Arc::new(Allocation::from_pilot(&pilot.film))),
+        ..options.clone()
+    };
+    let mut output = render_sampled(scene, &image_plan, filter, &image_options, finish)?;
+    output.pilot_spp = pilot.spp;
+    output.spp += pilot.spp;
+    output.seconds += pilot.seconds;
+    output.passes += pilot.passes;
+    output.non_finite.merge(pilot.non_finite);
+    Ok(output)
+}
+
+/// [`render_image`] without a pilot. The per-sample code is compiled once per sampler type, so
+/// that sampling is inlined into the integrator rather than dispatched per call.
+fn render_sampled<T: RayTally + Default + Send>(
     scene: &RenderScene,
     plan: &RenderPlan,
     filter: &Filter,

@@ -14,8 +14,12 @@ pub struct RenderStats {
     pub seconds: f64,
     /// Wall-clock seconds spent loading and preparing the scene.
     pub load_seconds: f64,
-    /// Samples per pixel rendered, including any resumed from a saved state.
+    /// Samples per pixel rendered, including any resumed from a saved state; with adaptive
+    /// sampling the mean over pixels, the pilot's samples included.
     pub spp: u32,
+    /// Samples per pixel of the adaptive-sampling pilot (rendered, not in the image); 0 without.
+    #[serde(default)]
+    pub pilot_spp: u32,
     /// Samples per pixel taken over from a saved state (`--resume`); 0 for a fresh render.
     #[serde(default)]
     pub resumed_spp: u32,
@@ -49,6 +53,7 @@ impl RenderStats {
         Self {
             seconds: output.seconds,
             spp: output.spp,
+            pilot_spp: output.pilot_spp,
             resumed_spp: output.resumed_spp,
             interrupted: output.interrupted,
             passes: output.passes,
@@ -87,6 +92,7 @@ mod tests {
             seconds: 1.5,
             load_seconds: 0.25,
             spp: 64,
+            pilot_spp: 0,
             resumed_spp: 16,
             interrupted: true,
             passes: 3,

@@ -54,6 +54,9 @@ pub struct RenderPlan {
     pub budget: RenderBudget,
     /// Sample count the sampler lays its pattern out for.
     pub sampler_spp: u32,
+    /// Adaptive sampling: a pilot render decides how many samples each pixel gets (see
+    /// [`crate::adaptive`]).
+    pub adaptive: bool,
 }
 
 impl RenderPlan {
@@ -65,6 +68,7 @@ impl RenderPlan {
             seed,
             budget: RenderBudget::spp(spp),
             sampler_spp: spp,
+            adaptive: false,
         }
     }
 }
@@ -137,6 +141,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         seed,
         budget,
         sampler_spp: budget.max_spp.unwrap_or(TIME_BUDGET_NOMINAL_SPP),
+        adaptive: args.adaptive,
     }
 }
 

@@ -5,8 +5,10 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use glam::{UVec2, Vec3};
+use render::adaptive::Allocation;
 use render::driver::{
-    RenderBudget, RenderOptions, RenderOutput, ResumePoint, StopSignal, render, render_pass,
+    PassSamples, RenderBudget, RenderOptions, RenderOutput, ResumePoint, StopSignal, render,
+    render_pass,
 };
 use render::film::Film;
 use render::tiles::tiles;
@@ -68,8 +70,87 @@ fn splitting_samples_into_passes_gives_the_same_bits() {
         render_pass(
             &mut passes,
             &all_tiles,
-            first,
-            spp,
+            PassSamples {
+                first,
+                count: spp,
+                allocation: None,
+            },
+            &|| 0u64,
+            &deterministic_sample,
+            &|_| {},
+        );
+    }
+    assert_eq!(passes, whole);
+}
+
+/// A pilot film for a 45 × 29 image whose left third has 9 times the right part's relative
+/// variance (so 3 times its samples).
+fn uneven_allocation() -> Arc<Allocation> {
+    let mut pilot = Film::new(45, 29);
+    for y in 0..29 {
+        for x in 0..45 {
+            let spread = if x < 15 { 3.0 } else { 1.0 };
+            for value in [1.0 - 0.1 * spread, 1.0 + 0.1 * spread] {
+                pilot.add(UVec2::new(x, y), Vec3::splat(value));
+            }
+        }
+    }
+    Arc::new(Allocation::from_pilot(&pilot))
+}
+
+#[test]
+fn an_allocation_gives_each_pixel_its_own_sample_count_whatever_the_threads() {
+    let allocation = uneven_allocation();
+    let options = RenderOptions {
+        allocation: Some(allocation.clone()),
+        ..RenderOptions::quiet()
+    };
+    let one = render_on(1, RenderBudget::spp(12), options.clone());
+    let two = render_on(2, RenderBudget::spp(12), options);
+    assert_eq!(one.film, two.film);
+    let (left, right) = (UVec2::new(2, 10), UVec2::new(40, 10));
+    let (n_left, n_right) = (one.film.pixel(left).count, one.film.pixel(right).count);
+    assert_eq!(n_left, allocation.samples(left, 12));
+    assert_eq!(n_right, allocation.samples(right, 12));
+    assert!(
+        n_left >= 2 * n_right,
+        "left {n_left} samples, right {n_right}"
+    );
+    // The pixel is the mean of exactly its own first n samples.
+    let expected = (0..n_left)
+        .map(|i| deterministic_sample(&mut 0, left, i))
+        .sum::<Vec3>()
+        / n_left as f32;
+    let got = one.film.to_image().pixel(2, 10);
+    assert!((got - expected).abs().max_element() <= 1e-6 * expected.max_element());
+    // About the budget's mean number of samples per pixel overall.
+    let mean = one.film.total_samples() as f64 / (45.0 * 29.0);
+    assert!((mean - 12.0).abs() < 0.5, "mean {mean} samples per pixel");
+}
+
+#[test]
+fn allocated_passes_give_the_same_bits_as_one_pass() {
+    let allocation = uneven_allocation();
+    let whole = render_on(
+        2,
+        RenderBudget::spp(8),
+        RenderOptions {
+            allocation: Some(allocation.clone()),
+            ..RenderOptions::quiet()
+        },
+    )
+    .film;
+    let mut passes = Film::new(45, 29);
+    let all_tiles = tiles(45, 29, 16);
+    for (first, count) in [(0, 1), (1, 2), (3, 5)] {
+        render_pass(
+            &mut passes,
+            &all_tiles,
+            PassSamples {
+                first,
+                count,
+                allocation: Some(&allocation),
+            },
             &|| 0u64,
             &deterministic_sample,
             &|_| {},

@@ -133,6 +133,7 @@ fn measure(
             seed,
             budget,
             sampler_spp,
+            adaptive: false,
         };
         render_scene(&suite.scene, &plan, &filter, &RenderOptions::quiet())
             .map(|(output, _)| output)

@@ -1,0 +1,248 @@
+//! Adaptive sampling: how many samples each pixel gets, decided by a pilot render.
+//!
+//! The image error Strata reports is the relative mean squared error, the mean over pixels of
+//! `(estimate − reference)² / (reference² + ε)`. A pixel whose one-sample relative variance is
+//! `r²` contributes `r² / n` with `n` samples, so for a fixed total number of samples the error is
+//! smallest with `n ∝ r` (minimise `Σ r²/n` subject to `Σ n` fixed). The pilot render estimates
+//! `r²` per pixel from its own samples (sample variance over `mean² + ε`), blurred over the 3 × 3
+//! neighbourhood because a few samples give a very noisy variance, and the allocation gives each
+//! pixel a share proportional to `r`, clamped to [`MIN_SHARE`, `MAX_SHARE`] of the mean so that
+//! an unlucky pilot neither starves a pixel nor spends the image on one.
+//!
+//! The pilot is rendered with its own seed and its samples are **not** in the image: the sample
+//! counts are then independent of the samples the image is made of, so each pixel's mean stays an
+//! unbiased estimate. (Reusing the pilot samples would bias it: a pilot sample that happened to be
+//! large raises the pixel's variance estimate, which buys more samples, which dilutes it.)
+
+use glam::UVec2;
+
+use crate::budget::RenderBudget;
+use crate::film::Film;
+use crate::metrics::RELMSE_EPSILON;
+
+/// Least share of the mean sample count a pixel gets.
+pub const MIN_SHARE: f64 = 0.1;
+/// Largest share of the mean sample count a pixel gets.
+pub const MAX_SHARE: f64 = 8.0;
+/// The pilot takes this fraction of the budget (samples or seconds)...
+pub const PILOT_FRACTION: f64 = 1.0 / 16.0;
+/// ...but at most this many samples per pixel.
+pub const MAX_PILOT_SPP: u32 = 16;
+
+/// Seed of the pilot render of a render seeded with `seed`: a different sample stream.
+pub fn pilot_seed(seed: u32) -> u32 {
+    seed ^ 0xA5A5_5A5A
+}
+
+/// The budgets of the pilot and of the image proper for a render with `budget`, or `None` when
+/// the budget is too small to split (fewer than 2 samples per pixel).
+///
+/// The pilot gets [`PILOT_FRACTION`] of the samples (at least 1, at most [`MAX_PILOT_SPP`]) or
+/// of the time; the image gets the rest of the samples (its `max_spp` is the mean per pixel).
+/// A time limit is shared out by the caller: the image gets what the pilot leaves.
+pub fn split_budget(budget: &RenderBudget) -> Option<(RenderBudget, RenderBudget)> {
+    let pilot_spp = match budget.max_spp {
+        Some(spp) if spp < 2 => return None,
+        Some(spp) => ((f64::from(spp) * PILOT_FRACTION) as u32).clamp(1, MAX_PILOT_SPP),
+        None => MAX_PILOT_SPP,
+    };
+    let pilot = RenderBudget {
+        max_spp: Some(pilot_spp),
+        max_seconds: budget.max_seconds.map(|s| s * PILOT_FRACTION),
+    };
+    let image = RenderBudget {
+        max_spp: budget.max_spp.map(|spp| spp - pilot_spp),
+        max_seconds: budget.max_seconds,
+    };
+    Some((pilot, image))
+}
+
+/// Per-pixel shares of the samples: pixel `i` gets `max(1, round(share_i · v))` samples when
+/// the mean is `v` samples per pixel. The shares average 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Allocation {
+    width: u32,
+    shares: Vec<f32>,
+}
+
+impl Allocation {
+    /// Every pixel the same share (what rendering without adaptivity does).
+    pub fn uniform(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            shares: vec![1.0; width as usize * height as usize],
+        }
+    }
+
+    /// The allocation that minimises relative MSE according to the `pilot` film (see the module
+    /// documentation). A pilot with no variance anywhere gives the uniform allocation.
+    pub fn from_pilot(pilot: &Film) -> Self {
+        let (width, height) = (pilot.width() as usize, pilot.height() as usize);
+        let relative_variance: Vec<f64> = pilot
+            .pixels()
+            .iter()
+            .map(|p| {
+                let mean = p.mean().as_dvec3();
+                let variance = p.variance_of_mean().as_dvec3() * f64::from(p.count);
+                let relative = variance / (mean * mean + RELMSE_EPSILON);
+                (relative.x + relative.y + relative.z) / 3.0
+            })
+            .collect();
+        let blurred = box_blur_3x3(&relative_variance, width, height);
+        let wanted: Vec<f64> = blurred.iter().map(|r2| r2.sqrt()).collect();
+        Self {
+            width: pilot.width(),
+            shares: normalised_shares(&wanted),
+        }
+    }
+
+    /// The share of `pixel` (1 is the mean).
+    pub fn share(&self, pixel: UVec2) -> f32 {
+        self.shares[self.index(pixel)]
+    }
+
+    /// Samples `pixel` gets when the mean is `mean_spp` samples per pixel: 0 for 0, else at least
+    /// 1; never decreasing as `mean_spp` grows, so passes can add samples pixel by pixel.
+    pub fn samples(&self, pixel: UVec2, mean_spp: u32) -> u32 {
+        if mean_spp == 0 {
+            return 0;
+        }
+        let wanted = (f64::from(self.share(pixel)) * f64::from(mean_spp)).round();
+        wanted.clamp(1.0, f64::from(u32::MAX)) as u32
+    }
+
+    fn index(&self, pixel: UVec2) -> usize {
+        pixel.y as usize * self.width as usize + pixel.x as usize
+    }
+}
+
+/// The mean of each value's 3 × 3 neighbourhood (clipped at the image border).
+fn box_blur_3x3(values: &[f64], width: usize, height: usize) -> Vec<f64> {
+    let mut blurred = Vec::with_capacity(values.len());
+    for y in 0..height {
+        for x in 0..width {
+            let (mut sum, mut count) = (0.0, 0.0);
+            for ny in y.saturating_sub(1)..(y + 2).min(height) {
+                for nx in x.saturating_sub(1)..(x + 2).min(width) {
+                    sum += values[ny * width + nx];
+                    count += 1.0;
+                }
+            }
+            blurred.push(sum / count);
+        }
+    }
+    blurred
+}
+
+/// `wanted` (non-negative; NaN counts as 0) scaled to mean 1 and clamped to
+/// [`MIN_SHARE`, `MAX_SHARE`]; all ones when nothing is wanted anywhere.
+fn normalised_shares(wanted: &[f64]) -> Vec<f32> {
+    let clean: Vec<f64> = wanted
+        .iter()
+        .map(|&w| if w.is_finite() && w > 0.0 { w } else { 0.0 })
+        .collect();
+    let mut shares = clean.clone();
+    // Clamping moves the mean; a few rounds of rescaling and clamping settle it.
+    for _ in 0..8 {
+        let mean = shares.iter().sum::<f64>() / shares.len().max(1) as f64;
+        if !(mean > 0.0 && mean.is_finite()) {
+            return vec![1.0; wanted.len()];
+        }
+        for share in &mut shares {
+            *share = (*share / mean).clamp(MIN_SHARE, MAX_SHARE);
+        }
+    }
+    shares.iter().map(|&s| s as f32).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn shares_follow_the_relative_standard_deviation() {
+        // Left half: relative variance 4x the right half's, so twice the samples.
+        let (width, height) = (8, 4);
+        let mut pilot = Film::new(width, height);
+        for y in 0..height {
+            for x in 0..width {
+                let spread = if x < width / 2 { 2.0 } else { 1.0 };
+                for value in [1.0 - spread * 0.5, 1.0 + spread * 0.5] {
+                    pilot.add(UVec2::new(x, y), Vec3::splat(value));
+                }
+            }
+        }
+        let allocation = Allocation::from_pilot(&pilot);
+        let far_left = allocation.share(UVec2::new(0, 1));
+        let far_right = allocation.share(UVec2::new(width - 1, 1));
+        assert!(
+            (far_left / far_right - 2.0).abs() < 1e-4,
+            "{far_left} / {far_right}"
+        );
+        let mean: f32 = (0..height)
+            .flat_map(|y| (0..width).map(move |x| UVec2::new(x, y)))
+            .map(|p| allocation.share(p))
+            .sum::<f32>()
+            / (width * height) as f32;
+        assert!((mean - 1.0).abs() < 1e-5, "mean share {mean}");
+    }
+
+    #[test]
+    fn a_noiseless_pilot_gives_the_uniform_allocation() {
+        let mut pilot = Film::new(3, 2);
+        for y in 0..2 {
+            for x in 0..3 {
+                pilot.add(UVec2::new(x, y), Vec3::ONE);
+                pilot.add(UVec2::new(x, y), Vec3::ONE);
+            }
+        }
+        assert_eq!(Allocation::from_pilot(&pilot), Allocation::uniform(3, 2));
+    }
+
+    #[test]
+    fn shares_are_clamped_and_keep_mean_one() {
+        let mut wanted = vec![0.0; 99];
+        wanted.push(1e9);
+        wanted[3] = f64::NAN;
+        let shares = normalised_shares(&wanted);
+        assert!(
+            shares
+                .iter()
+                .all(|&s| { (MIN_SHARE as f32 * 0.999..=MAX_SHARE as f32 * 1.001).contains(&s) })
+        );
+        let mean = shares.iter().map(|&s| f64::from(s)).sum::<f64>() / shares.len() as f64;
+        assert!((mean - 1.0).abs() < 0.05, "mean share {mean}");
+        assert_eq!(shares[99], MAX_SHARE as f32);
+    }
+
+    #[test]
+    fn sample_counts_grow_with_the_mean_and_never_drop_to_zero() {
+        let allocation = Allocation {
+            width: 2,
+            shares: vec![0.1, 1.9],
+        };
+        let (low, high) = (UVec2::new(0, 0), UVec2::new(1, 0));
+        assert_eq!(allocation.samples(low, 0), 0);
+        assert_eq!(allocation.samples(low, 1), 1);
+        assert_eq!(allocation.samples(high, 10), 19);
+        let mut previous = 0;
+        for mean in 0..200 {
+            let n = allocation.samples(low, mean);
+            assert!(n >= previous, "mean {mean}: {n} < {previous}");
+            previous = n;
+        }
+    }
+
+    #[test]
+    fn budgets_split_between_pilot_and_image() {
+        let (pilot, image) = split_budget(&RenderBudget::spp(256)).expect("splits");
+        assert_eq!((pilot.max_spp, image.max_spp), (Some(16), Some(240)));
+        let (pilot, image) = split_budget(&RenderBudget::spp(20)).expect("splits");
+        assert_eq!((pilot.max_spp, image.max_spp), (Some(1), Some(19)));
+        assert_eq!(split_budget(&RenderBudget::spp(1)), None);
+        let (pilot, image) = split_budget(&RenderBudget::seconds(2.0)).expect("splits");
+        assert_eq!(pilot.max_seconds, Some(0.125));
+        assert_eq!(image.max_spp, None);
+    }
+}
