@@ -22,6 +22,7 @@ const INT_SCALE: f32 = 256.0;
 /// A ray from the returned point in direction `dir` does not hit the surface around `p` again.
 /// The offset is about `1.5e-5 * |p|` per coordinate (256 ulps), and `1.5e-5` world units for
 /// coordinates smaller than `1/32`.
+#[inline]
 pub fn offset_ray_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
     let n = if ng.dot(dir) < 0.0 { -ng } else { ng };
     let of_i = (INT_SCALE * n).as_ivec3();
@@ -36,6 +37,7 @@ pub fn offset_ray_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
 
 /// Moves `x` by `ulps` units in the last place, away from zero for positive `ulps`.
 /// Only used for `|x| >= ORIGIN`, where the bit pattern cannot cross zero.
+#[inline]
 fn offset_ulps(x: f32, ulps: i32) -> f32 {
     let signed = if x < 0.0 { -ulps } else { ulps };
     f32::from_bits((x.to_bits() as i32).wrapping_add(signed) as u32)

@@ -16,6 +16,7 @@ pub struct Ray {
 impl Ray {
     /// The ray from `origin` in the direction of `dir`, which is normalised here (it must be
     /// non-zero and finite).
+    #[inline]
     pub fn new(origin: Vec3, dir: Vec3) -> Self {
         Self {
             origin,
@@ -24,6 +25,7 @@ impl Ray {
     }
 
     /// The point at distance `t` (world units) along the ray.
+    #[inline]
     pub fn at(&self, t: f32) -> Vec3 {
         self.origin + t * self.dir
     }
@@ -31,6 +33,7 @@ impl Ray {
     /// A ray leaving the surface point `p` (unit geometric normal `ng`) in direction `dir`, its
     /// origin moved off the surface by [`offset_ray_origin`] so it does not hit that surface again.
     /// Works for both sides: reflection (`dir . ng > 0`) and transmission (`dir . ng < 0`).
+    #[inline]
     pub fn spawn(p: Vec3, ng: Vec3, dir: Vec3) -> Self {
         let dir = dir.normalize();
         Self {
@@ -48,6 +51,7 @@ impl Ray {
     /// offsets (about `1.5e-5` relative). When the points are so close that the moved points
     /// coincide or pass each other, the ray has direction `ng` and `t_max = 0`, so nothing can
     /// block it.
+    #[inline]
     pub fn spawn_to(p: Vec3, ng: Vec3, target_p: Vec3, target_ng: Vec3) -> (Self, f32) {
         let to_target = target_p - p;
         let origin = offset_ray_origin(p, ng, to_target);

@@ -16,6 +16,7 @@ pub struct ConstantEnvironment {
 
 impl ConstantEnvironment {
     /// A direction uniform over the sphere of directions (density 1 / 4π per steradian).
+    #[inline]
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         let wi = sample_uniform_sphere(u);
         Some(LightSample {

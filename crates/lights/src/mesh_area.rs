@@ -64,6 +64,7 @@ impl MeshAreaLight {
 
     /// A point uniform by area on the mesh, seen from `p`; `None` when it faces away or
     /// coincides with `p`.
+    #[inline]
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         let (index, _pmf, u_remapped) = self.area_distribution.sample(u.x);
         let [p0, p1, p2] = self.triangles[index];
@@ -75,6 +76,7 @@ impl MeshAreaLight {
 
     /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`
     /// (geometric normal `n_light`) of this mesh.
+    #[inline]
     pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
         area_pdf_towards(p, p_light, n_light, 1.0 / self.total_area)
     }

@@ -15,6 +15,7 @@ pub struct PointLight {
 
 impl PointLight {
     /// The only direction towards the light, with `intensity / distance²`; `None` at the light itself.
+    #[inline]
     pub fn sample_li(&self, p: Vec3) -> Option<LightSample> {
         let to_light = self.position - p;
         let distance_squared = to_light.length_squared();

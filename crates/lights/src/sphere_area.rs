@@ -31,6 +31,7 @@ pub struct SphereAreaLight {
 impl SphereAreaLight {
     /// From outside: a direction uniform in the cone of the visible cap (pbrt-v4's method with a
     /// series expansion for small cones). From inside or on the sphere: a point uniform by area.
+    #[inline]
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         if self.samples_by_area(p) {
             return self.sample_area(p, u);

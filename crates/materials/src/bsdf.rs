@@ -46,6 +46,7 @@ pub enum Bsdf {
 
 impl Bsdf {
     /// f(wo, wi) per steradian, RGB, without the cosine factor; 0 for delta lobes.
+    #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         match self {
             Self::Diffuse(b) => b.eval(wo, wi),
@@ -57,6 +58,7 @@ impl Bsdf {
 
     /// Density per steradian with which [`Self::sample`] produces `wi` from `wo`; 0 for delta
     /// lobes (whose samples have no density).
+    #[inline]
     pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
         match self {
             Self::Diffuse(b) => b.pdf_solid_angle(wo, wi),
@@ -70,6 +72,7 @@ impl Bsdf {
     /// dielectric's reflection or refraction), `u_dir` ∈ [0, 1)² the direction within the lobe.
     /// `None` when there is no valid direction (e.g. `wo` behind a one-sided BSDF, or a rough
     /// reflection that lands below the surface), which the estimator counts as zero.
+    #[inline]
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
         match self {
             Self::Diffuse(b) => b.sample(wo, u_dir),
@@ -82,6 +85,7 @@ impl Bsdf {
 
     /// Whether every lobe is a delta (mirror, smooth dielectric): then `eval` and
     /// `pdf_solid_angle` are always 0 and light sampling at this surface is pointless.
+    #[inline]
     pub fn is_delta(&self) -> bool {
         match self {
             Self::Conductor(_) | Self::Dielectric(_) => true,
@@ -92,6 +96,7 @@ impl Bsdf {
 
     /// Whether at least one lobe is a delta, so some samples have `is_delta` set. Equal to
     /// [`Self::is_delta`] for the current BSDFs, which have no mixed delta/non-delta lobes.
+    #[inline]
     pub fn has_delta_lobe(&self) -> bool {
         self.is_delta()
     }

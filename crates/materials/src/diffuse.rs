@@ -23,6 +23,7 @@ impl Diffuse {
     }
 
     /// f(wo, wi) per steradian: reflectance / π when both directions are above the surface.
+    #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         if wo.z > 0.0 && wi.z > 0.0 {
             self.reflectance * FRAC_1_PI
@@ -32,6 +33,7 @@ impl Diffuse {
     }
 
     /// Density per steradian of [`Self::sample`]: cos θi / π when both directions are above.
+    #[inline]
     pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
         if wo.z > 0.0 && wi.z > 0.0 {
             cosine_hemisphere_pdf(wi.z)
@@ -41,6 +43,7 @@ impl Diffuse {
     }
 
     /// A cosine-weighted direction from `u_dir`; `None` when `wo` is not above the surface.
+    #[inline]
     pub fn sample(&self, wo: Vec3, u_dir: Vec2) -> Option<BsdfSample> {
         if wo.z <= 0.0 {
             return None;

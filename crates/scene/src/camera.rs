@@ -49,6 +49,7 @@ impl Camera {
     }
 
     /// True when rays depend on a lens sample (a thin lens with a non-zero aperture).
+    #[inline]
     pub fn has_lens(&self) -> bool {
         self.lens.is_some_and(|l| l.aperture_radius > 0.0)
     }
@@ -56,6 +57,7 @@ impl Camera {
     /// The ray through the continuous film position `film` (pixels; (0, 0) is the top-left
     /// corner of the image, pixel centres at half-integers), using `u_lens` ∈ [0, 1)² on the
     /// aperture when the camera has a lens. The ray starts on the near clipping plane.
+    #[inline]
     pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> Ray {
         let ndc = film / self.resolution * 2.0 - Vec2::ONE;
         // Image right is camera -x and image down is camera -y.
