@@ -19,6 +19,8 @@ pub struct Configuration {
     pub transport: Transport,
     /// The sampling pattern.
     pub sampler: SamplerKind,
+    /// Adaptive sampling (a pilot render allocates samples per pixel).
+    pub adaptive: bool,
 }
 
 /// What the scene file fixes for every configuration.
@@ -50,8 +52,8 @@ impl SceneTransport {
 
 /// The ladder for a scene with `features`: reference → BSDF sampling only → NEE without MIS →
 /// MIS → (uniform and RIS light selection, with more than one light) → + roulette → +
-/// stratified → + blue noise, and `auto` (`auto_settings` of MIS with roulette, blue-noise
-/// sampler). Light selection and the later rungs build on MIS (on NEE where no light can be
+/// stratified → + blue noise → + adaptive sampling, and `auto` (`auto_settings` of MIS with
+/// roulette, blue-noise sampler, adaptive sampling). Light selection and the later rungs build on MIS (on NEE where no light can be
 /// hit, on BSDF sampling where none can be sampled). BSDF-only is left out when the scene has delta lights
 /// (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be sampled; MIS
 /// when no light can be hit (it equals NEE there).
@@ -60,6 +62,7 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
         name: name.to_string(),
         transport: Transport::Path(settings),
         sampler,
+        adaptive: false,
     };
     let independent = SamplerKind::Independent;
     let mis = transport.mis();
@@ -70,6 +73,7 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
             hide_emitters: transport.hide_emitters,
         }),
         sampler: independent,
+        adaptive: false,
     }];
     let no_nee = PathSettings {
         sample_lights: false,
@@ -123,15 +127,22 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
     rungs.push(rung("+roulette", roulette, independent));
     rungs.push(rung("+stratified", roulette, SamplerKind::Stratified));
     rungs.push(rung("+bluenoise", roulette, SamplerKind::BlueNoise));
+    rungs.push(Configuration {
+        adaptive: true,
+        ..rung("+adaptive", roulette, SamplerKind::BlueNoise)
+    });
     let auto = PathSettings {
         russian_roulette: Some(transport.roulette),
         ..mis
     };
-    rungs.push(rung(
-        "auto",
-        auto_settings(auto, features),
-        SamplerKind::BlueNoise,
-    ));
+    rungs.push(Configuration {
+        adaptive: true,
+        ..rung(
+            "auto",
+            auto_settings(auto, features),
+            SamplerKind::BlueNoise,
+        )
+    });
     rungs
 }
 
@@ -175,6 +186,7 @@ mod tests {
                 "+roulette",
                 "+stratified",
                 "+bluenoise",
+                "+adaptive",
                 "auto"
             ]
         );

@@ -133,7 +133,7 @@ fn measure(
             seed,
             budget,
             sampler_spp,
-            adaptive: false,
+            adaptive: configuration.adaptive,
         };
         render_scene(&suite.scene, &plan, &filter, &RenderOptions::quiet())
             .map(|(output, _)| output)
