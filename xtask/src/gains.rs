@@ -8,7 +8,8 @@
 //! stratified and blue-noise samplers better than independent on the soft-shadow scene (and,
 //! reported alongside, on the thin-lens scene). Claims at equal time (efficiency
 //! 1 / (relMSE × seconds)): power-proportional light selection over uniform and RIS over
-//! power-proportional on the many-lights scene; Russian roulette over none on the Cornell box.
+//! power-proportional on the many-lights scene; Russian roulette over none on the Cornell box;
+//! adaptive sampling over none (at least 1.3×) on Veach's scene.
 //! Each error is the mean over several seeds, each time the median; the machine should be quiet.
 
 use integrators::reference::ReferenceSettings;
@@ -50,6 +51,7 @@ pub fn measure_all(root: &Path) -> Result<Vec<Claim>, String> {
     claims.push(samplers(root, "softshadow")?);
     claims.push(samplers(root, "thinlens")?);
     claims.push(roulette_on_the_cornell_box(root)?);
+    claims.push(adaptive_on_veach(root)?);
     Ok(claims)
 }
 
@@ -111,17 +113,29 @@ impl Subject {
         spp: u32,
         seeds: &[u32],
     ) -> Result<(Vec<Image>, f64), String> {
+        self.render_plans(seeds, |seed| {
+            RenderPlan::fixed_spp(transport, sampler, seed, spp)
+        })
+    }
+
+    /// Renders `plan(seed)` for each seed of `seeds`: the images and the median rendering time
+    /// in seconds.
+    fn render_plans(
+        &self,
+        seeds: &[u32],
+        plan: impl Fn(u32) -> RenderPlan,
+    ) -> Result<(Vec<Image>, f64), String> {
         let filter = film_filter(self.scene.desc.film.filter).map_err(|e| e.to_string())?;
         let mut images = Vec::new();
         let mut seconds = Vec::new();
         for &seed in seeds {
-            let plan = RenderPlan::fixed_spp(transport, sampler, seed, spp);
+            let plan = plan(seed);
             let (output, _) = render_scene(&self.scene, &plan, &filter, &RenderOptions::quiet())
                 .map_err(|e| e.to_string())?;
             if output.non_finite.nan + output.non_finite.inf > 0 {
                 return Err(format!(
-                    "{}: {} NaN and {} infinite samples (seed {seed}, {spp} spp)",
-                    self.name, output.non_finite.nan, output.non_finite.inf
+                    "{}: {} NaN and {} infinite samples (seed {seed}, {} spp)",
+                    self.name, output.non_finite.nan, output.non_finite.inf, output.spp
                 ));
             }
             images.push(output.film.to_image());
@@ -397,6 +411,46 @@ fn roulette_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
         figure: format!(
             "{spp} spp, 3 seeds: without relMSE {error_off:.3e} in {seconds_off:.3} s, with \
              {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x",
+            eff_on / eff_off
+        ),
+    })
+}
+
+/// Adaptive sampling against the same configuration without it (roulette, blue noise), at
+/// equal samples per pixel (the pilot's counted) and so about equal time, on Veach's scene,
+/// whose pixels' relative noise differs by orders of magnitude.
+fn adaptive_on_veach(root: &Path) -> Result<Claim, String> {
+    let subject = Subject::load(root, "veach-mis")?;
+    let spp = 128;
+    let settings = PathSettings {
+        russian_roulette: Some(RussianRoulette {
+            start_depth: subject.scene.desc.integrator.rr_depth.max(1),
+        }),
+        ..subject.mis()
+    };
+    let transport = Transport::Path(settings);
+    let mut measured = Vec::new();
+    for adaptive in [false, true] {
+        let (images, seconds) = subject.render_plans(&SEEDS[..3], |seed| RenderPlan {
+            adaptive,
+            ..RenderPlan::fixed_spp(transport, SamplerKind::BlueNoise, seed, spp)
+        })?;
+        let error = subject.relmse(&images)?;
+        measured.push((error, seconds, 1.0 / (error * seconds)));
+    }
+    let [
+        (error_off, seconds_off, eff_off),
+        (error_on, seconds_on, eff_on),
+    ] = measured[..]
+    else {
+        unreachable!("two configurations were measured");
+    };
+    Ok(Claim {
+        name: "adaptive sampling improves efficiency on Veach's scene".to_string(),
+        passed: eff_on > 1.3 * eff_off,
+        figure: format!(
+            "{spp} spp, 3 seeds: uniform relMSE {error_off:.3e} in {seconds_off:.3} s, adaptive \
+             {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x (need > 1.3x)",
             eff_on / eff_off
         ),
     })

@@ -12,6 +12,8 @@ pub trait RayTally {
     /// An occlusion ray towards a light, traced for `0 < t < t_max` (world units; ∞ towards
     /// the environment).
     fn shadow_ray(&mut self, ray: &Ray, t_max: f32);
+    /// The rays told so far.
+    fn counts(&self) -> RayCounters;
 }
 
 /// Rays traced while estimating one or more samples.
@@ -40,5 +42,10 @@ impl RayTally for RayCounters {
     #[inline(always)]
     fn shadow_ray(&mut self, _ray: &Ray, _t_max: f32) {
         self.shadow_rays += 1;
+    }
+
+    #[inline(always)]
+    fn counts(&self) -> RayCounters {
+        *self
     }
 }

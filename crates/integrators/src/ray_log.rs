@@ -44,6 +44,10 @@ impl RayTally for RayLog {
         self.counters.shadow_ray(ray, t_max);
         self.shadow.push(ShadowRay { ray: *ray, t_max });
     }
+
+    fn counts(&self) -> RayCounters {
+        self.counters
+    }
 }
 
 #[cfg(test)]

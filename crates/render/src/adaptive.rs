@@ -2,19 +2,24 @@
 //!
 //! The image error Strata reports is the relative mean squared error, the mean over pixels of
 //! `(estimate − reference)² / (reference² + ε)`. A pixel whose one-sample relative variance is
-//! `r²` contributes `r² / n` with `n` samples, so for a fixed total number of samples the error is
-//! smallest with `n ∝ r` (minimise `Σ r²/n` subject to `Σ n` fixed). The pilot render estimates
-//! `r²` per pixel from its own samples (sample variance over `mean² + ε`), blurred over the 3 × 3
-//! neighbourhood because a few samples give a very noisy variance, and the allocation gives each
-//! pixel a share proportional to `r`, clamped to [`MIN_SHARE`, `MAX_SHARE`] of the mean so that
-//! an unlucky pilot neither starves a pixel nor spends the image on one.
+//! `r²` and whose sample costs `c` contributes `r² / n` with `n` samples, so for a fixed total
+//! cost the error is smallest with `n ∝ r / √c` (minimise `Σ r²/n` subject to `Σ n c` fixed).
+//! The pilot render estimates `r²` per pixel from its own samples (sample variance over
+//! `mean² + ε`) and `c` from the rays its samples traced ([`PixelCosts`]), both blurred over the
+//! 3 × 3 neighbourhood because a few samples give a very noisy variance, and the allocation gives
+//! each pixel a share proportional to `r / √c`, clamped to [`MIN_SHARE`, `MAX_SHARE`] of the
+//! mean so that an unlucky pilot neither starves a pixel nor spends the image on one. (Costs are
+//! counted in rays, not timed, so that the allocation, and so the image, is reproducible.)
 //!
 //! The pilot is rendered with its own seed and its samples are **not** in the image: the sample
 //! counts are then independent of the samples the image is made of, so each pixel's mean stays an
 //! unbiased estimate. (Reusing the pilot samples would bias it: a pilot sample that happened to be
 //! large raises the pixel's variance estimate, which buys more samples, which dilutes it.)
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use glam::UVec2;
+use integrators::RayCounters;
 
 use crate::budget::RenderBudget;
 use crate::film::Film;
@@ -28,6 +33,53 @@ pub const MAX_SHARE: f64 = 8.0;
 pub const PILOT_FRACTION: f64 = 1.0 / 16.0;
 /// ...but at most this many samples per pixel.
 pub const MAX_PILOT_SPP: u32 = 16;
+
+/// Cost of a sample apart from its rays, in units of an occlusion ray (camera ray set-up,
+/// sampler start, film update).
+const SAMPLE_OVERHEAD: f64 = 1.0;
+/// Cost of a closest-hit ray with the shading of its hit, in units of an occlusion ray.
+const CLOSEST_RAY_COST: f64 = 2.0;
+
+/// The cost of each pixel's samples, in units of an occlusion ray, summed as they are rendered
+/// (from any thread).
+#[derive(Debug)]
+pub struct PixelCosts {
+    width: u32,
+    /// Per pixel: the closest-hit rays in the high 32 bits and occlusion rays in the low.
+    rays: Vec<AtomicU64>,
+}
+
+impl PixelCosts {
+    /// No cost yet for any pixel of a `width × height` image.
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            rays: (0..u64::from(width) * u64::from(height))
+                .map(|_| AtomicU64::new(0))
+                .collect(),
+        }
+    }
+
+    /// Adds the rays one sample of `pixel` traced.
+    pub fn add(&self, pixel: UVec2, rays: RayCounters) {
+        let packed = (rays.rays << 32) | rays.shadow_rays.min(u64::from(u32::MAX));
+        let index = pixel.y as usize * self.width as usize + pixel.x as usize;
+        self.rays[index].fetch_add(packed, Ordering::Relaxed);
+    }
+
+    /// The mean cost of a sample of each pixel that had `samples[i]` samples, in row order.
+    fn per_sample(&self, samples: impl Iterator<Item = u32>) -> Vec<f64> {
+        self.rays
+            .iter()
+            .zip(samples)
+            .map(|(rays, n)| {
+                let packed = rays.load(Ordering::Relaxed);
+                let cost = CLOSEST_RAY_COST * (packed >> 32) as f64 + (packed & 0xFFFF_FFFF) as f64;
+                SAMPLE_OVERHEAD + cost / f64::from(n.max(1))
+            })
+            .collect()
+    }
+}
 
 /// Seed of the pilot render of a render seeded with `seed`: a different sample stream.
 pub fn pilot_seed(seed: u32) -> u32 {
@@ -74,9 +126,10 @@ impl Allocation {
         }
     }
 
-    /// The allocation that minimises relative MSE according to the `pilot` film (see the module
-    /// documentation). A pilot with no variance anywhere gives the uniform allocation.
-    pub fn from_pilot(pilot: &Film) -> Self {
+    /// The allocation that minimises relative MSE for the time spent according to the `pilot`
+    /// film and the `costs` of its samples (see the module documentation). A pilot with no
+    /// variance anywhere gives the uniform allocation.
+    pub fn from_pilot(pilot: &Film, costs: &PixelCosts) -> Self {
         let (width, height) = (pilot.width() as usize, pilot.height() as usize);
         let relative_variance: Vec<f64> = pilot
             .pixels()
@@ -89,7 +142,16 @@ impl Allocation {
             })
             .collect();
         let blurred = box_blur_3x3(&relative_variance, width, height);
-        let wanted: Vec<f64> = blurred.iter().map(|r2| r2.sqrt()).collect();
+        let cost = box_blur_3x3(
+            &costs.per_sample(pilot.pixels().iter().map(|p| p.count)),
+            width,
+            height,
+        );
+        let wanted: Vec<f64> = blurred
+            .iter()
+            .zip(&cost)
+            .map(|(r2, c)| (r2 / c).sqrt())
+            .collect();
         Self {
             width: pilot.width(),
             shares: normalised_shares(&wanted),
@@ -173,7 +235,7 @@ mod tests {
                 }
             }
         }
-        let allocation = Allocation::from_pilot(&pilot);
+        let allocation = Allocation::from_pilot(&pilot, &PixelCosts::new(width, height));
         let far_left = allocation.share(UVec2::new(0, 1));
         let far_right = allocation.share(UVec2::new(width - 1, 1));
         assert!(
@@ -197,7 +259,36 @@ mod tests {
                 pilot.add(UVec2::new(x, y), Vec3::ONE);
             }
         }
-        assert_eq!(Allocation::from_pilot(&pilot), Allocation::uniform(3, 2));
+        assert_eq!(
+            Allocation::from_pilot(&pilot, &PixelCosts::new(3, 2)),
+            Allocation::uniform(3, 2)
+        );
+    }
+
+    #[test]
+    fn costlier_pixels_get_fewer_samples_for_the_same_noise() {
+        // Equal noise everywhere; the right half's samples trace 4 closest-hit and 7 occlusion
+        // rays (cost 1 + 8 + 7 = 16 units), the left half's none (cost 1): 4x the samples left.
+        let (width, height) = (8, 2);
+        let mut pilot = Film::new(width, height);
+        let costs = PixelCosts::new(width, height);
+        for y in 0..height {
+            for x in 0..width {
+                for value in [0.5, 1.5] {
+                    pilot.add(UVec2::new(x, y), Vec3::splat(value));
+                    if x >= width / 2 {
+                        let rays = RayCounters {
+                            rays: 4,
+                            shadow_rays: 7,
+                        };
+                        costs.add(UVec2::new(x, y), rays);
+                    }
+                }
+            }
+        }
+        let allocation = Allocation::from_pilot(&pilot, &costs);
+        let ratio = allocation.share(UVec2::new(0, 0)) / allocation.share(UVec2::new(7, 0));
+        assert!((ratio - 4.0).abs() < 1e-4, "share ratio {ratio}");
     }
 
     #[test]

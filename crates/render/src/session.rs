@@ -1,7 +1,7 @@
 //! One render of a built scene as planned, on the current thread pool: the part of
 //! `strata render` that tests and tools call in-process.
 
-use crate::adaptive::{Allocation, pilot_seed, split_budget};
+use crate::adaptive::{Allocation, PixelCosts, pilot_seed, split_budget};
 use crate::driver::{BudgetError, RenderBudget, RenderOptions, RenderOutput, render};
 use crate::filter::{Filter, FilterError};
 use crate::technique::{RenderPlan, Transport};
@@ -94,7 +94,7 @@ fn render_image<T: RayTally + Default + Send>(
         None
     };
     let Some((pilot_budget, image_budget)) = split else {
-        return render_sampled(scene, plan, filter, options, finish);
+        return render_sampled(scene, plan, filter, options, finish, None);
     };
     plan.budget.validate()?;
     let pilot_spp = pilot_budget.max_spp.unwrap_or(1);
@@ -104,7 +104,8 @@ fn render_image<T: RayTally + Default + Send>(
         sampler_spp: pilot_spp,
         ..*plan
     };
-    let pilot = render_sampled(scene, &pilot_plan, filter, options, finish)?;
+    let costs = PixelCosts::new(scene.desc.film.width, scene.desc.film.height);
+    let pilot = render_sampled(scene, &pilot_plan, filter, options, finish, Some(&costs))?;
     if pilot.interrupted {
         return Ok(pilot);
     }
@@ -119,10 +120,10 @@ fn render_image<T: RayTally + Default + Send>(
         ..*plan
     };
     let image_options = RenderOptions {
-        allocation: Some(Arc::new(Allocation::from_pilot(&pilot.film))),
+        allocation: Some(Arc::new(Allocation::from_pilot(&pilot.film, &costs))),
         ..options.clone()
     };
-    let mut output = render_sampled(scene, &image_plan, filter, &image_options, finish)?;
+    let mut output = render_sampled(scene, &image_plan, filter, &image_options, finish, None)?;
     output.pilot_spp = pilot.spp;
     output.spp += pilot.spp;
     output.seconds += pilot.seconds;
@@ -131,36 +132,41 @@ fn render_image<T: RayTally + Default + Send>(
     Ok(output)
 }
 
-/// [`render_image`] without a pilot. The per-sample code is compiled once per sampler type, so
-/// that sampling is inlined into the integrator rather than dispatched per call.
+/// [`render_image`] without a pilot, adding each sample's rays to `costs` if given. The
+/// per-sample code is compiled once per sampler type, so that sampling is inlined into the
+/// integrator rather than dispatched per call.
 fn render_sampled<T: RayTally + Default + Send>(
     scene: &RenderScene,
     plan: &RenderPlan,
     filter: &Filter,
     options: &RenderOptions,
     finish: &(dyn Fn(&mut T) + Sync),
+    costs: Option<&PixelCosts>,
 ) -> Result<RenderOutput, BudgetError> {
     let (seed, spp) = (plan.seed, plan.sampler_spp);
     match plan.sampler {
-        SamplerKind::Independent => render_with(scene, plan, filter, options, finish, || {
-            IndependentSampler::new(seed, spp)
-        }),
-        SamplerKind::Stratified => render_with(scene, plan, filter, options, finish, || {
+        SamplerKind::Independent => {
+            render_with(scene, plan, filter, options, finish, costs, || {
+                IndependentSampler::new(seed, spp)
+            })
+        }
+        SamplerKind::Stratified => render_with(scene, plan, filter, options, finish, costs, || {
             StratifiedSampler::new(seed, spp)
         }),
-        SamplerKind::BlueNoise => render_with(scene, plan, filter, options, finish, || {
+        SamplerKind::BlueNoise => render_with(scene, plan, filter, options, finish, costs, || {
             BlueNoiseSampler::new(seed, spp)
         }),
     }
 }
 
-/// [`render_image`] with the samplers `new_sampler` makes.
+/// [`render_sampled`] with the samplers `new_sampler` makes.
 fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     scene: &RenderScene,
     plan: &RenderPlan,
     filter: &Filter,
     options: &RenderOptions,
     finish: &(dyn Fn(&mut T) + Sync),
+    costs: Option<&PixelCosts>,
     new_sampler: impl Fn() -> S + Sync + Send,
 ) -> Result<RenderOutput, BudgetError> {
     let world = &scene.world;
@@ -190,12 +196,24 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
                 Vec2::ZERO
             };
             let ray = camera.generate_ray(film_position, u_lens);
-            match &integrator {
+            let rays_before = costs.map(|_| worker.tally.counts());
+            let radiance = match &integrator {
                 Integrator::Reference(settings) => {
                     reference::radiance(world, ray, sampler, settings, &mut worker.tally)
                 }
                 Integrator::Path(path) => path.radiance(world, ray, sampler, &mut worker.tally),
+            };
+            if let (Some(costs), Some(before)) = (costs, rays_before) {
+                let after = worker.tally.counts();
+                costs.add(
+                    pixel,
+                    RayCounters {
+                        rays: after.rays - before.rays,
+                        shadow_rays: after.shadow_rays - before.shadow_rays,
+                    },
+                );
             }
+            radiance
         },
     )
 }

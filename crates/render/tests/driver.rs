@@ -5,7 +5,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use glam::{UVec2, Vec3};
-use render::adaptive::Allocation;
+use render::adaptive::{Allocation, PixelCosts};
 use render::driver::{
     PassSamples, RenderBudget, RenderOptions, RenderOutput, ResumePoint, StopSignal, render,
     render_pass,
@@ -95,7 +95,7 @@ fn uneven_allocation() -> Arc<Allocation> {
             }
         }
     }
-    Arc::new(Allocation::from_pilot(&pilot))
+    Arc::new(Allocation::from_pilot(&pilot, &PixelCosts::new(45, 29)))
 }
 
 #[test]
