@@ -50,7 +50,7 @@ impl SceneTransport {
 
 /// The ladder for a scene with `features`: reference → BSDF sampling only → NEE without MIS →
 /// MIS → (uniform and RIS light selection, with more than one light) → + roulette → +
-/// stratified → + blue noise, and `auto` (`auto_settings` of MIS with roulette, blue-noise
+/// stratified → + blue noise → + Sobol, and `auto` (`auto_settings` of MIS with roulette, blue-noise
 /// sampler). Light selection and the later rungs build on MIS (on NEE where no light can be
 /// hit, on BSDF sampling where none can be sampled). BSDF-only is left out when the scene has delta lights
 /// (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be sampled; MIS
@@ -123,6 +123,7 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
     rungs.push(rung("+roulette", roulette, independent));
     rungs.push(rung("+stratified", roulette, SamplerKind::Stratified));
     rungs.push(rung("+bluenoise", roulette, SamplerKind::BlueNoise));
+    rungs.push(rung("+sobol", roulette, SamplerKind::Sobol));
     let auto = PathSettings {
         russian_roulette: Some(transport.roulette),
         ..mis
@@ -175,6 +176,7 @@ mod tests {
                 "+roulette",
                 "+stratified",
                 "+bluenoise",
+                "+sobol",
                 "auto"
             ]
         );
