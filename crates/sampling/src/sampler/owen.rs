@@ -38,7 +38,7 @@ pub(crate) fn sobol_1(index: u32) -> u32 {
 /// keeps that form: adding, multiplying by an odd number and xoring with a multiple by an even
 /// number only carry information from low bits to high bits.)
 #[inline]
-fn laine_karras(mut x: u32, seed: u32) -> u32 {
+pub(crate) fn laine_karras(mut x: u32, seed: u32) -> u32 {
     x ^= x.wrapping_mul(0x3D20_ADEA);
     x = x.wrapping_add(seed);
     x = x.wrapping_mul((seed >> 16) | 1);
@@ -51,7 +51,8 @@ fn laine_karras(mut x: u32, seed: u32) -> u32 {
 ///
 /// A bijection of `u32` that maps every aligned block of 2ᵏ words (equal top 32 − k bits) onto an
 /// aligned block, so it keeps every elementary interval's count of a point set, and with it the net
-/// property; the hash is [`laine_karras`] over the reversed bits.
+/// property; the hash is [`laine_karras`] over the reversed bits:
+/// `owen_scramble(v, seed) = laine_karras(v.reverse_bits(), seed).reverse_bits()`.
 #[inline]
 pub(crate) fn owen_scramble(v: u32, seed: u32) -> u32 {
     laine_karras(v.reverse_bits(), seed).reverse_bits()

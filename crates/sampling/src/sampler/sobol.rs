@@ -1,7 +1,7 @@
 //! The Sobol sampler: Owen-scrambled Sobol points, padded per dimension with shuffled indices.
 
 use super::Sampler;
-use super::owen::{owen_scramble, randomise, sobol_0, sobol_1};
+use super::owen::{laine_karras, randomise, sobol_0, sobol_1};
 use crate::hash::mix64;
 use crate::rng::unit_f32_from_bits;
 use glam::{UVec2, Vec2};
@@ -50,7 +50,8 @@ pub struct SobolSampler {
     samples_per_pixel: u32,
     seed_key: u64,
     pixel_key: u64,
-    sample: u32,
+    /// The sample index with its bits reversed (the index shuffle's input, reversed once per sample).
+    reversed_sample: u32,
     dimension: u32,
 }
 
@@ -62,7 +63,7 @@ impl SobolSampler {
             samples_per_pixel: samples_per_pixel.max(1),
             seed_key: mix64(u64::from(seed) ^ SEED_SALT),
             pixel_key: 0,
-            sample: 0,
+            reversed_sample: 0,
             dimension: 0,
         }
     }
@@ -86,10 +87,11 @@ impl SobolSampler {
         mix64(base.wrapping_add((k + 1).wrapping_mul(STREAM_STEP)))
     }
 
-    /// The current sample's index into the Sobol sequence in the dimension whose base is `base`.
+    /// The current sample's index into the Sobol sequence in the dimension whose base is `base`:
+    /// its Owen scramble, `owen_scramble(sample, seed)`, from the sample's reversed bits.
     #[inline]
     fn shuffled_index(&self, base: u64) -> u32 {
-        owen_scramble(self.sample, Self::word(base, 0) as u32)
+        laine_karras(self.reversed_sample, Self::word(base, 0) as u32).reverse_bits()
     }
 }
 
@@ -98,7 +100,7 @@ impl Sampler for SobolSampler {
     fn start_pixel_sample(&mut self, pixel: UVec2, sample_index: u32) {
         let packed = u64::from(pixel.x) | (u64::from(pixel.y) << 32);
         self.pixel_key = mix64(packed ^ self.seed_key);
-        self.sample = sample_index;
+        self.reversed_sample = sample_index.reverse_bits();
         self.dimension = 0;
     }
 
