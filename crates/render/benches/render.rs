@@ -122,7 +122,7 @@ fn samples(c: &mut Criterion) {
     group.throughput(Throughput::Elements(pixels * u64::from(SAMPLES_SPP)));
     let spp = SAMPLES_SPP.to_string();
     for integrator in ["reference", "nee", "mis", "ris", "auto"] {
-        for sampler in ["independent", "stratified", "bluenoise"] {
+        for sampler in ["independent", "stratified", "bluenoise", "sobol"] {
             if sampler != "independent" && integrator != "auto" {
                 continue;
             }

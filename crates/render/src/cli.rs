@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! strata render SCENE.xml --out OUT.exr [--spp N] [--time SECONDS]
-//!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise]
+//!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise|sobol]
 //!               [--rr on|off] [--adaptive] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
 //!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
 //! strata diff A.exr B.exr
@@ -67,6 +67,8 @@ pub enum SamplerKind {
     /// Blue-noise samples.
     #[value(name = "bluenoise")]
     BlueNoise,
+    /// Owen-scrambled Sobol samples (a (0, 2)-net in every 2D dimension at every power-of-two count).
+    Sobol,
 }
 
 /// An on/off switch (`--rr on|off`).
@@ -309,6 +311,7 @@ mod tests {
             ("independent", SamplerKind::Independent),
             ("stratified", SamplerKind::Stratified),
             ("bluenoise", SamplerKind::BlueNoise),
+            ("sobol", SamplerKind::Sobol),
         ] {
             assert_eq!(
                 render_args(&["render", "s.xml", "--out", "o.exr", "--sampler", name]).sampler,

@@ -8,7 +8,9 @@ use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
 use integrators::{PathIntegrator, RayCounters, RayLog, RayTally, reference};
 use sampling::Sampler;
-use sampling::sampler::{BlueNoiseSampler, IndependentSampler, SamplerKind, StratifiedSampler};
+use sampling::sampler::{
+    BlueNoiseSampler, IndependentSampler, SamplerKind, SobolSampler, StratifiedSampler,
+};
 use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
@@ -155,6 +157,9 @@ fn render_sampled<T: RayTally + Default + Send>(
         }),
         SamplerKind::BlueNoise => render_with(scene, plan, filter, options, finish, costs, || {
             BlueNoiseSampler::new(seed, spp)
+        }),
+        SamplerKind::Sobol => render_with(scene, plan, filter, options, finish, costs, || {
+            SobolSampler::new(seed, spp)
         }),
     }
 }

@@ -120,11 +120,12 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         Some(SamplerFlag::Independent) => SamplerKind::Independent,
         Some(SamplerFlag::Stratified) => SamplerKind::Stratified,
         Some(SamplerFlag::BlueNoise) => SamplerKind::BlueNoise,
+        Some(SamplerFlag::Sobol) => SamplerKind::Sobol,
         None => match desc.sampler.kind {
             SceneSampler::Independent => SamplerKind::Independent,
-            SceneSampler::Stratified | SceneSampler::Multijitter | SceneSampler::Ldsampler => {
-                SamplerKind::Stratified
-            }
+            SceneSampler::Stratified | SceneSampler::Multijitter => SamplerKind::Stratified,
+            // Mitsuba's `ldsampler` is a scrambled (0, 2)-sequence with per-dimension shuffles.
+            SceneSampler::Ldsampler => SamplerKind::Sobol,
         },
     };
     let seed = args.seed.map_or(desc.sampler.seed, fold_seed);

@@ -61,6 +61,7 @@ fn samplers(c: &mut Criterion) {
         (SamplerKind::Independent, "independent"),
         (SamplerKind::Stratified, "stratified"),
         (SamplerKind::BlueNoise, "blue_noise"),
+        (SamplerKind::Sobol, "sobol"),
     ] {
         let mut group = c.benchmark_group(format!("sampler/{name}"));
         let mut sampler = AnySampler::new(kind, 1, 16);

@@ -11,6 +11,16 @@ pub(crate) fn mix32(mut x: u32) -> u32 {
     x ^ (x >> 16)
 }
 
+/// A 64-bit bijection in which every input bit affects every output bit: the SplitMix64 output
+/// function (Stafford's "Mix13" finaliser). Consecutive inputs spaced by an odd constant give
+/// unrelated outputs, which makes a cheap counter-based stream of 64-bit hashes.
+#[inline]
+pub(crate) fn mix64(mut x: u64) -> u64 {
+    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^ (x >> 31)
+}
+
 /// A hash of the ordered pair (a, b); swapping the arguments gives an unrelated value.
 #[inline]
 pub(crate) fn hash2(a: u32, b: u32) -> u32 {

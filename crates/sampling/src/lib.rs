@@ -2,7 +2,7 @@
 //!
 //! - [`Rng`]: Marsaglia's xorshift32 seeded through the Wang hash, with one replayable stream per
 //!   (pixel, sample index, seed); implements `rand_core`'s traits.
-//! - [`sampler`]: the [`Sampler`] trait and the independent, stratified and blue-noise samplers
+//! - [`sampler`]: the [`Sampler`] trait and the independent, stratified, blue-noise and Sobol samplers
 //!   ([`AnySampler`] picks one at run time).
 //! - [`warp`]: maps from [0, 1)² to hemispheres, the sphere, discs, triangles and cones, each with its
 //!   pdf and inverse.
@@ -51,5 +51,6 @@ pub use frame::Frame;
 pub use reservoir::Reservoir;
 pub use rng::Rng;
 pub use sampler::{
-    AnySampler, BlueNoiseSampler, IndependentSampler, Sampler, SamplerKind, StratifiedSampler,
+    AnySampler, BlueNoiseSampler, IndependentSampler, Sampler, SamplerKind, SobolSampler,
+    StratifiedSampler,
 };

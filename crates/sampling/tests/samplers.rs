@@ -5,17 +5,19 @@
 use glam::{UVec2, Vec2, Vec3};
 use sampling::chi2::{Chi2Config, Chi2Domain, chi2_discrete, chi2_test};
 use sampling::{
-    AnySampler, BlueNoiseSampler, IndependentSampler, Sampler, SamplerKind, StratifiedSampler,
+    AnySampler, BlueNoiseSampler, IndependentSampler, Sampler, SamplerKind, SobolSampler,
+    StratifiedSampler,
 };
 
-const KINDS: [SamplerKind; 3] = [
+const KINDS: [SamplerKind; 4] = [
     SamplerKind::Independent,
     SamplerKind::Stratified,
     SamplerKind::BlueNoise,
+    SamplerKind::Sobol,
 ];
-/// Chi-square tests in this file: 3 kinds × (3 uniformity + 2 decorrelation + 2 × 3 within-pixel
-/// decorrelation) + 1.
-const CHI2_TESTS: u32 = 34;
+/// Chi-square tests in this file: 4 kinds × (3 uniformity + 2 decorrelation) + 3 kinds × 2 × 3
+/// within-pixel decorrelation + 1.
+const CHI2_TESTS: u32 = 39;
 
 /// One dimension's value: a 1D value is (x, 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -91,6 +93,8 @@ fn any_sampler_is_the_sampler_it_wraps() {
     assert_eq!(b, draw(&mut StratifiedSampler::new(1, 8), pixel, 3));
     let c = draw(&mut AnySampler::new(SamplerKind::BlueNoise, 1, 8), pixel, 3);
     assert_eq!(c, draw(&mut BlueNoiseSampler::new(1, 8), pixel, 3));
+    let d = draw(&mut AnySampler::new(SamplerKind::Sobol, 1, 8), pixel, 3);
+    assert_eq!(d, draw(&mut SobolSampler::new(1, 8), pixel, 3));
     for kind in KINDS {
         let sampler = AnySampler::new(kind, 0, 0);
         assert_eq!(sampler.kind(), kind);
@@ -299,8 +303,16 @@ fn dimensions_are_not_correlated_within_one_pixel() {
     // 8 × 8 grid like independent points (16 per cell), not along a few lines: this fails if the
     // permutations of two dimensions are related (say, rotations of each other), even though over
     // seeds the pairs would still be uniform.
+    //
+    // Not for the Sobol sampler: within an aligned block of 8 of its samples the two dimensions'
+    // strata are paired by one bijection, so cell counts move together and the statistic is not
+    // multinomial (heavier-tailed: about 2 % of pixels fail at this file's corrected level).
+    // `tests/sobol.rs` tests its pairing against the statistic's own expected value instead.
     let spp = 1024;
     for (k, kind) in KINDS.into_iter().enumerate() {
+        if kind == SamplerKind::Sobol {
+            continue;
+        }
         for (a, b, axis) in [(1, 3, 0), (2, 4, 1)] {
             for pixel in [UVec2::new(0, 0), UVec2::new(40, 17), UVec2::new(1000, 999)] {
                 let mut sampler = AnySampler::new(kind, 5 + k as u32, spp);

@@ -52,8 +52,9 @@ impl SceneTransport {
 
 /// The ladder for a scene with `features`: reference → BSDF sampling only → NEE without MIS →
 /// MIS → (uniform and RIS light selection, with more than one light) → + roulette → +
-/// stratified → + blue noise → + adaptive sampling, and `auto` (`auto_settings` of MIS with
-/// roulette, blue-noise sampler, adaptive sampling). Light selection and the later rungs build on MIS (on NEE where no light can be
+/// stratified → + blue noise → + Sobol → + adaptive sampling (Sobol), and `auto`
+/// (`auto_settings` of MIS with roulette, Sobol sampler, adaptive sampling). Light selection and
+/// the later rungs build on MIS (on NEE where no light can be
 /// hit, on BSDF sampling where none can be sampled). BSDF-only is left out when the scene has delta lights
 /// (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be sampled; MIS
 /// when no light can be hit (it equals NEE there).
@@ -127,9 +128,10 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
     rungs.push(rung("+roulette", roulette, independent));
     rungs.push(rung("+stratified", roulette, SamplerKind::Stratified));
     rungs.push(rung("+bluenoise", roulette, SamplerKind::BlueNoise));
+    rungs.push(rung("+sobol", roulette, SamplerKind::Sobol));
     rungs.push(Configuration {
         adaptive: true,
-        ..rung("+adaptive", roulette, SamplerKind::BlueNoise)
+        ..rung("+adaptive", roulette, SamplerKind::Sobol)
     });
     let auto = PathSettings {
         russian_roulette: Some(transport.roulette),
@@ -137,11 +139,7 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
     };
     rungs.push(Configuration {
         adaptive: true,
-        ..rung(
-            "auto",
-            auto_settings(auto, features),
-            SamplerKind::BlueNoise,
-        )
+        ..rung("auto", auto_settings(auto, features), SamplerKind::Sobol)
     });
     rungs
 }
@@ -186,6 +184,7 @@ mod tests {
                 "+roulette",
                 "+stratified",
                 "+bluenoise",
+                "+sobol",
                 "+adaptive",
                 "auto"
             ]

@@ -18,7 +18,7 @@ const LEGEND: f64 = 150.0;
 /// Line colours, cycled per configuration.
 const COLOURS: &[&str] = &[
     "#000000", "#e6194b", "#3cb44b", "#4363d8", "#f58231", "#911eb4", "#42d4f4", "#f032e6",
-    "#9a6324", "#808000",
+    "#9a6324", "#808000", "#000075", "#469990",
 ];
 
 /// The plot of `report`'s measurements: log10 seconds across, log10 relMSE up, axis ranges

@@ -99,7 +99,7 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
 
 /// Every switch of the path integrator turned on its own against `base` (MIS, power heuristic,
 /// power-proportional selection, independent sampler): BSDF-only, light-only, uniform directions,
-/// balance heuristic, uniform and RIS selection, roulette, stratified and blue-noise samplers.
+/// balance heuristic, uniform and RIS selection, roulette, stratified, blue-noise and Sobol samplers.
 pub fn configurations(base: PathSettings) -> Vec<Configuration> {
     let independent = |label, settings| Configuration {
         label,
@@ -168,6 +168,11 @@ pub fn configurations(base: PathSettings) -> Vec<Configuration> {
             label: "blue noise",
             settings: base,
             sampler: SamplerKind::BlueNoise,
+        },
+        Configuration {
+            label: "sobol",
+            settings: base,
+            sampler: SamplerKind::Sobol,
         },
     ]
 }

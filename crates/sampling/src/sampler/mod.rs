@@ -19,15 +19,19 @@
 //! | [`IndependentSampler`] | independent uniform numbers | independent |
 //! | [`StratifiedSampler`] | multi-jittered strata in every dimension | independent permutations |
 //! | [`BlueNoiseSampler`] | a rank-1 lattice (Kronecker) point set | blue-noise shifts: screen-space blue-noise error |
+//! | [`SobolSampler`] | Owen-scrambled Sobol (0, 2)-sequence: a net at every power-of-two prefix, any count | independent index shuffles and scrambles |
 
 mod blue_noise;
 mod blue_noise_tile;
 mod independent;
+mod owen;
+mod sobol;
 mod strata;
 mod stratified;
 
 pub use blue_noise::BlueNoiseSampler;
 pub use independent::IndependentSampler;
+pub use sobol::SobolSampler;
 pub use stratified::StratifiedSampler;
 
 use glam::{UVec2, Vec2};
@@ -54,9 +58,12 @@ pub enum SamplerKind {
     Stratified,
     /// [`BlueNoiseSampler`]: blue-noise-shifted Kronecker point sets (screen-space blue-noise error).
     BlueNoise,
+    /// [`SobolSampler`]: Owen-scrambled Sobol points padded per dimension (a (0, 2)-net in every
+    /// 2D dimension at every power-of-two prefix).
+    Sobol,
 }
 
-/// Any of the three samplers behind one type, dispatched by `match` (no trait objects in the hot loop).
+/// Any of the samplers behind one type, dispatched by `match` (no trait objects in the hot loop).
 #[derive(Clone, Debug)]
 pub enum AnySampler {
     /// An [`IndependentSampler`].
@@ -65,6 +72,8 @@ pub enum AnySampler {
     Stratified(StratifiedSampler),
     /// A [`BlueNoiseSampler`].
     BlueNoise(BlueNoiseSampler),
+    /// A [`SobolSampler`].
+    Sobol(SobolSampler),
 }
 
 impl AnySampler {
@@ -80,6 +89,7 @@ impl AnySampler {
             SamplerKind::BlueNoise => {
                 Self::BlueNoise(BlueNoiseSampler::new(seed, samples_per_pixel))
             }
+            SamplerKind::Sobol => Self::Sobol(SobolSampler::new(seed, samples_per_pixel)),
         }
     }
 
@@ -89,6 +99,7 @@ impl AnySampler {
             Self::Independent(_) => SamplerKind::Independent,
             Self::Stratified(_) => SamplerKind::Stratified,
             Self::BlueNoise(_) => SamplerKind::BlueNoise,
+            Self::Sobol(_) => SamplerKind::Sobol,
         }
     }
 
@@ -98,6 +109,7 @@ impl AnySampler {
             Self::Independent(s) => s.samples_per_pixel(),
             Self::Stratified(s) => s.samples_per_pixel(),
             Self::BlueNoise(s) => s.samples_per_pixel(),
+            Self::Sobol(s) => s.samples_per_pixel(),
         }
     }
 }
@@ -109,6 +121,7 @@ impl Sampler for AnySampler {
             Self::Independent(s) => s.start_pixel_sample(pixel, sample_index),
             Self::Stratified(s) => s.start_pixel_sample(pixel, sample_index),
             Self::BlueNoise(s) => s.start_pixel_sample(pixel, sample_index),
+            Self::Sobol(s) => s.start_pixel_sample(pixel, sample_index),
         }
     }
 
@@ -118,6 +131,7 @@ impl Sampler for AnySampler {
             Self::Independent(s) => s.next_1d(),
             Self::Stratified(s) => s.next_1d(),
             Self::BlueNoise(s) => s.next_1d(),
+            Self::Sobol(s) => s.next_1d(),
         }
     }
 
@@ -127,6 +141,7 @@ impl Sampler for AnySampler {
             Self::Independent(s) => s.next_2d(),
             Self::Stratified(s) => s.next_2d(),
             Self::BlueNoise(s) => s.next_2d(),
+            Self::Sobol(s) => s.next_2d(),
         }
     }
 }
