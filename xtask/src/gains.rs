@@ -101,6 +101,7 @@ impl Subject {
             mis: Mis::Power,
             light_selection: LightSelectionMode::Power,
             russian_roulette: None,
+            light_tracing: false,
         }
     }
 

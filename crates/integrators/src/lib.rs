@@ -5,6 +5,7 @@
 mod counters;
 mod delta_lights;
 mod light_choice;
+mod light_tracer;
 pub mod path;
 mod ray_log;
 pub mod reference;
@@ -13,6 +14,7 @@ mod uniform_direction;
 mod world;
 
 pub use counters::{RayCounters, RayTally};
+pub use light_tracer::{CameraConnection, LightTracer};
 pub use path::PathIntegrator;
 pub use ray_log::{RayLog, ShadowRay};
 pub use settings::{LightSelectionMode, Mis, PathSettings, RussianRoulette};

@@ -93,6 +93,10 @@ impl PathIntegrator {
             pdf_dir: 0.0,
             delta: true,
         };
+        // Whether the path's first vertex was left by a non-delta lobe and its last by a delta
+        // one: emission it meets next is the light tracer's with `light_tracing` on.
+        let mut caustic_chain = false;
+        let mut first_vertex_non_delta = false;
         for depth in 1..=max_depth {
             let hidden = depth == 1 && settings.hide_emitters;
             let Some(surface) = world.intersect(&ray, counters) else {
@@ -107,7 +111,11 @@ impl PathIntegrator {
                 }
                 break;
             };
-            if !hidden && let Some(light) = surface.light {
+            let left_to_light_tracer = settings.light_tracing && caustic_chain;
+            if !hidden
+                && !left_to_light_tracer
+                && let Some(light) = surface.light
+            {
                 let emitted = world.emitted(&surface, -ray.dir);
                 if emitted != Vec3::ZERO {
                     let weight = self.emission_weight(&previous, Some(light), || {
@@ -143,6 +151,11 @@ impl PathIntegrator {
             };
             throughput *= next.weight;
             eta_scale *= next.eta * next.eta;
+            if depth == 1 {
+                first_vertex_non_delta = !next.is_delta;
+            } else {
+                caustic_chain = first_vertex_non_delta && next.is_delta;
+            }
             if let Some(roulette) = settings.russian_roulette {
                 let u_survive = sampler.next_1d();
                 if depth >= roulette.start_depth {

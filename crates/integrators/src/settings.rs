@@ -63,6 +63,12 @@ pub struct PathSettings {
     pub light_selection: LightSelectionMode,
     /// Russian roulette, `None` for off.
     pub russian_roulette: Option<RussianRoulette>,
+    /// Caustics by light tracing: paths whose first vertex after the camera is non-delta and
+    /// whose last vertex before an area light is delta (light → mirror or glass → … → diffuse
+    /// → camera) are left to [`crate::LightTracer`], which traces them from the lights and
+    /// connects them to the camera; the path tracer drops the emission it would find along
+    /// them. The renderer must then run the light tracer too.
+    pub light_tracing: bool,
 }
 
 impl Default for PathSettings {
@@ -75,6 +81,7 @@ impl Default for PathSettings {
             mis: Mis::Off,
             light_selection: LightSelectionMode::Power,
             russian_roulette: None,
+            light_tracing: false,
         }
     }
 }
@@ -108,6 +115,9 @@ impl PathSettings {
         }
         if let Some(rr) = self.russian_roulette {
             names.push(format!("russian-roulette-from-{}", rr.start_depth));
+        }
+        if self.light_tracing {
+            names.push("light-tracing-caustics".to_string());
         }
         names
     }

@@ -11,6 +11,7 @@
 //! the same radiance from every direction.
 
 mod area_sample;
+mod emission;
 mod environment;
 mod light;
 mod mesh_area;
@@ -19,6 +20,7 @@ mod sample;
 mod selection;
 mod sphere_area;
 
+pub use emission::EmissionSample;
 pub use environment::ConstantEnvironment;
 pub use light::Light;
 pub use mesh_area::MeshAreaLight;

@@ -1,7 +1,8 @@
 //! The closed set of emitter types, dispatched by enum.
 
 use crate::{
-    ConstantEnvironment, LightSample, MeshAreaLight, PointLight, SphereAreaLight, mean_rgb,
+    ConstantEnvironment, EmissionSample, LightSample, MeshAreaLight, PointLight, SphereAreaLight,
+    mean_rgb,
 };
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -29,6 +30,18 @@ impl Light {
             Light::Sphere(l) => l.sample_li(p, u),
             Light::Point(l) => l.sample_li(p),
             Light::Environment(l) => l.sample_li(p, u),
+        }
+    }
+
+    /// Light leaving an area emitter's surface (see [`EmissionSample`]), with `u_point` and
+    /// `u_dir` uniform in [0, 1)²; `None` for point lights and the environment, which light
+    /// tracing leaves to the path tracer.
+    #[inline]
+    pub fn sample_emission(&self, u_point: Vec2, u_dir: Vec2) -> Option<EmissionSample> {
+        match self {
+            Light::Mesh(l) => l.sample_emission(u_point, u_dir),
+            Light::Sphere(l) => l.sample_emission(u_point, u_dir),
+            Light::Point(_) | Light::Environment(_) => None,
         }
     }
 

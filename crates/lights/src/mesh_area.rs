@@ -1,6 +1,7 @@
 //! Area emitters on triangle meshes (Mitsuba's `area` emitter attached to a mesh shape).
 
 use crate::area_sample::{area_pdf_towards, area_sample_towards};
+use crate::emission::{EmissionSample, lambertian_emission};
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Vec2, Vec3};
 use sampling::distribution::CdfTable;
@@ -79,6 +80,23 @@ impl MeshAreaLight {
     #[inline]
     pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
         area_pdf_towards(p, p_light, n_light, 1.0 / self.total_area)
+    }
+
+    /// Light leaving the mesh: a point uniform by area (`u_point`) and a cosine-distributed
+    /// direction about its front normal (`u_dir`).
+    #[inline]
+    pub fn sample_emission(&self, u_point: Vec2, u_dir: Vec2) -> Option<EmissionSample> {
+        let (index, _pmf, u_remapped) = self.area_distribution.sample(u_point.x);
+        let [p0, p1, p2] = self.triangles[index];
+        let b = sample_uniform_triangle(Vec2::new(u_remapped, u_point.y));
+        let p = p0 * b.x + p1 * b.y + p2 * b.z;
+        lambertian_emission(
+            p,
+            self.normals[index],
+            self.radiance,
+            self.total_area,
+            u_dir,
+        )
     }
 
     /// Emitted power (W, mean over channels): π · area · radiance for a one-sided Lambertian emitter.

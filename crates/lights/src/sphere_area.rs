@@ -2,6 +2,7 @@
 //! the solid angle of the cap visible from the shading point.
 
 use crate::area_sample::{area_pdf_towards, area_sample_towards};
+use crate::emission::{EmissionSample, lambertian_emission};
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Vec2, Vec3};
 use sampling::Frame;
@@ -89,6 +90,22 @@ impl SphereAreaLight {
             n_light,
             is_delta: false,
         })
+    }
+
+    /// Light leaving the sphere: a point uniform by area (`u_point`) and a cosine-distributed
+    /// direction about its emitting normal (`u_dir`).
+    #[inline]
+    pub fn sample_emission(&self, u_point: Vec2, u_dir: Vec2) -> Option<EmissionSample> {
+        let outward = sample_uniform_sphere(u_point);
+        let n = if self.flip_normals { -outward } else { outward };
+        let area = 4.0 * PI * self.radius * self.radius;
+        lambertian_emission(
+            self.center + self.radius * outward,
+            n,
+            self.radiance,
+            area,
+            u_dir,
+        )
     }
 
     fn sample_area(&self, p: Vec3, u: Vec2) -> Option<LightSample> {

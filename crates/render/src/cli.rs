@@ -3,7 +3,7 @@
 //! ```text
 //! strata render SCENE.xml --out OUT.exr [--spp N] [--time SECONDS]
 //!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise|sobol]
-//!               [--rr on|off] [--adaptive] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
+//!               [--rr on|off] [--adaptive] [--light-tracing] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
 //!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
 //! strata diff A.exr B.exr
 //! strata merge A.exr B.exr … --out OUT.exr [--png OUT.png]
@@ -119,6 +119,12 @@ pub struct RenderArgs {
     /// the pilot's samples included. Not with --state or --resume.
     #[arg(long, conflicts_with_all = ["state", "resume"])]
     pub adaptive: bool,
+    /// Caustics by light tracing: light seen on a diffuse or glossy surface after mirrors or
+    /// glass (light → specular → surface → camera) is traced from the lights and connected to
+    /// the camera instead of being found by chance. Needs a pinhole camera, a box filter, a
+    /// delta BSDF and an area light; ignored otherwise. Not with --state or --resume.
+    #[arg(long, conflicts_with_all = ["state", "resume"])]
+    pub light_tracing: bool,
     /// Maximum number of path vertices after the camera, as in Mitsuba (1: emitters seen
     /// directly; 2: adds direct lighting).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
@@ -238,9 +244,10 @@ mod tests {
             "--stats",
             "s.json",
             "--adaptive",
+            "--light-tracing",
         ]);
         assert_eq!(r.scene, Path::new("scene.xml"));
-        assert!(r.adaptive);
+        assert!(r.adaptive && r.light_tracing);
         assert_eq!(r.out, Path::new("o.exr"));
         assert_eq!((r.spp, r.time), (Some(64), Some(0.5)));
         assert_eq!(r.integrator, IntegratorPreset::Mis);
@@ -269,7 +276,7 @@ mod tests {
             (None, None, None, None, None)
         );
         assert_eq!((r.state, r.resume), (None, None));
-        assert!(!r.adaptive);
+        assert!(!r.adaptive && !r.light_tracing);
     }
 
     #[test]

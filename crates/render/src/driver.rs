@@ -88,6 +88,15 @@ pub struct NonFiniteCounts {
 }
 
 impl NonFiniteCounts {
+    /// Counts `value`, which has a NaN or infinite channel.
+    fn count(&mut self, value: Vec3) {
+        if value.is_nan() {
+            self.nan += 1;
+        } else {
+            self.inf += 1;
+        }
+    }
+
     /// Adds another count to this one.
     pub fn merge(&mut self, other: NonFiniteCounts) {
         self.nan += other.nan;
@@ -135,6 +144,31 @@ pub fn render<S, I, F>(
     options: &RenderOptions,
     init: I,
     sample: F,
+) -> Result<RenderOutput, BudgetError>
+where
+    I: Fn() -> S + Sync + Send,
+    F: Fn(&mut S, UVec2, u32) -> Vec3 + Sync + Send,
+{
+    render_with_light_paths(width, height, budget, options, init, sample, None)
+}
+
+/// Traces one light path for a pixel sample: `trace(scratch, pixel, sample_index, splats)`
+/// pushes the (pixel, value) contributions the path makes anywhere on the film onto `splats`.
+/// It must depend only on `pixel` and `sample_index`, like the sample function.
+pub type LightPaths<'a, S> = dyn Fn(&mut S, UVec2, u32, &mut Vec<(UVec2, Vec3)>) + Sync + 'a;
+
+/// [`render`], also tracing one light path per pixel sample with `light_paths` (when given)
+/// and splatting its contributions onto the film ([`Film::add_splat`]). Splats are applied
+/// after each pass in tile order, each tile's in the order traced, so the film stays
+/// bit-identical whatever the threads.
+pub fn render_with_light_paths<S, I, F>(
+    width: u32,
+    height: u32,
+    budget: &RenderBudget,
+    options: &RenderOptions,
+    init: I,
+    sample: F,
+    light_paths: Option<&LightPaths<'_, S>>,
 ) -> Result<RenderOutput, BudgetError>
 where
     I: Fn() -> S + Sync + Send,
@@ -212,6 +246,7 @@ where
             },
             &init,
             &sample,
+            light_paths,
             &report,
         );
         non_finite.merge(pass);
@@ -270,6 +305,7 @@ pub fn render_pass<S, I, F>(
     samples: PassSamples<'_>,
     init: &I,
     sample: &F,
+    light_paths: Option<&LightPaths<'_, S>>,
     report: &(dyn Fn(f64) + Sync),
 ) -> NonFiniteCounts
 where
@@ -278,11 +314,11 @@ where
 {
     let done = AtomicUsize::new(0);
     let shared: &Film = film;
-    let results: Vec<(Vec<PixelSum>, NonFiniteCounts)> = tiles
+    let results: Vec<TileResult> = tiles
         .par_iter()
         .map_init(init, |scratch, tile| {
-            let mut counts = NonFiniteCounts::default();
-            let sums = tile
+            let mut result = TileResult::default();
+            result.sums = tile
                 .pixels()
                 .map(|pixel| {
                     let mut sums = *shared.pixel(pixel);
@@ -290,10 +326,23 @@ where
                         let value = sample(scratch, pixel, index);
                         if value.is_finite() {
                             sums.add(value);
-                        } else if value.is_nan() {
-                            counts.nan += 1;
                         } else {
-                            counts.inf += 1;
+                            result.counts.count(value);
+                        }
+                        if let Some(trace) = light_paths {
+                            result.light_paths += 1;
+                            let first_splat = result.splats.len();
+                            trace(scratch, pixel, index, &mut result.splats);
+                            let mut kept = first_splat;
+                            for i in first_splat..result.splats.len() {
+                                if result.splats[i].1.is_finite() {
+                                    result.splats[kept] = result.splats[i];
+                                    kept += 1;
+                                } else {
+                                    result.counts.count(result.splats[i].1);
+                                }
+                            }
+                            result.splats.truncate(kept);
                         }
                     }
                     sums
@@ -301,15 +350,32 @@ where
                 .collect();
             let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
             report(finished as f64 / tiles.len() as f64);
-            (sums, counts)
+            result
         })
         .collect();
     let mut total = NonFiniteCounts::default();
-    for (tile, (sums, counts)) in tiles.iter().zip(results) {
-        for (pixel, pixel_sums) in tile.pixels().zip(sums) {
+    for (tile, result) in tiles.iter().zip(results) {
+        for (pixel, pixel_sums) in tile.pixels().zip(result.sums) {
             *film.pixel_mut(pixel) = pixel_sums;
         }
-        total.merge(counts);
+        for (pixel, value) in result.splats {
+            film.add_splat(pixel, value);
+        }
+        film.add_light_paths(result.light_paths);
+        total.merge(result.counts);
     }
     total
+}
+
+/// What one tile of a pass produced.
+#[derive(Default)]
+struct TileResult {
+    /// Its pixels' sums, in [`Tile::pixels`] order.
+    sums: Vec<PixelSum>,
+    /// Light paths' finite contributions anywhere on the film, in the order traced.
+    splats: Vec<(UVec2, Vec3)>,
+    /// Light paths traced.
+    light_paths: u64,
+    /// Samples and splats left out as non-finite.
+    counts: NonFiniteCounts,
 }

@@ -58,32 +58,103 @@ impl PixelSum {
     }
 }
 
-/// A `width × height` grid of [`PixelSum`]s, row-major, top row first.
+/// A `width × height` grid of [`PixelSum`]s, row-major, top row first, and the contributions
+/// light paths splatted onto it.
+///
+/// A pixel's value is the mean of its own samples plus its share of the light paths' splats:
+/// with `L` light paths traced for an `N`-pixel image, `N / L · Σ splats` (each light path
+/// stands for one pixel sample's worth of light, as in pbrt-v4's light tracer).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     width: u32,
     height: u32,
     pixels: Vec<PixelSum>,
+    /// Per pixel: the sum and the sum of squares of the light paths' splats (each path splats
+    /// at most once per pixel).
+    splat_sum: Vec<DVec3>,
+    splat_sum_sq: Vec<DVec3>,
+    /// Light paths traced, whether or not they splatted anything.
+    light_paths: u64,
 }
 
 impl Film {
     /// An empty film (no samples) of `width × height` pixels.
     pub fn new(width: u32, height: u32) -> Self {
-        Self {
+        Self::from_pixels(
             width,
             height,
-            pixels: vec![PixelSum::default(); width as usize * height as usize],
-        }
+            vec![PixelSum::default(); width as usize * height as usize],
+        )
+        .expect("the pixel count matches")
     }
 
     /// A film of `width × height` pixels holding `pixels` (row-major, top row first); `None`
     /// unless there are exactly `width * height` of them.
     pub fn from_pixels(width: u32, height: u32, pixels: Vec<PixelSum>) -> Option<Self> {
-        (pixels.len() == width as usize * height as usize).then_some(Self {
+        let count = width as usize * height as usize;
+        (pixels.len() == count).then(|| Self {
             width,
             height,
             pixels,
+            splat_sum: vec![DVec3::ZERO; count],
+            splat_sum_sq: vec![DVec3::ZERO; count],
+            light_paths: 0,
         })
+    }
+
+    /// Adds one light path's contribution `value` to `pixel`; panics outside the film.
+    pub fn add_splat(&mut self, pixel: UVec2, value: Vec3) {
+        let i = self.index(pixel);
+        let v = value.as_dvec3();
+        self.splat_sum[i] += v;
+        self.splat_sum_sq[i] += v * v;
+    }
+
+    /// Counts `paths` more light paths traced (splatting or not).
+    pub fn add_light_paths(&mut self, paths: u64) {
+        self.light_paths += paths;
+    }
+
+    /// Light paths traced into this film.
+    pub fn light_paths(&self) -> u64 {
+        self.light_paths
+    }
+
+    /// The estimate of `pixel`: the mean of its samples plus its share of the splats.
+    pub fn pixel_value(&self, pixel: UVec2) -> Vec3 {
+        let i = self.index(pixel);
+        self.value(i)
+    }
+
+    /// The estimated variance of [`Film::pixel_value`], per channel: the samples' variance of the
+    /// mean plus that of the splat estimate, `N² / L · (Σs²/L − (Σs/L)²)`.
+    pub fn pixel_variance(&self, pixel: UVec2) -> Vec3 {
+        let i = self.index(pixel);
+        self.variance(i)
+    }
+
+    fn value(&self, i: usize) -> Vec3 {
+        let mean = self.pixels[i].mean();
+        if self.light_paths == 0 {
+            return mean;
+        }
+        mean + (self.splat_sum[i] * self.splat_scale()).as_vec3()
+    }
+
+    fn variance(&self, i: usize) -> Vec3 {
+        let variance = self.pixels[i].variance_of_mean();
+        if self.light_paths < 2 {
+            return variance;
+        }
+        let paths = self.light_paths as f64;
+        let mean = self.splat_sum[i] / paths;
+        let spread = (self.splat_sum_sq[i] / paths - mean * mean).max(DVec3::ZERO);
+        variance + (spread * self.splat_scale() * self.splat_scale() * paths).as_vec3()
+    }
+
+    /// N / L: what a splat is worth in a pixel's value.
+    fn splat_scale(&self) -> f64 {
+        self.pixels.len() as f64 / self.light_paths as f64
     }
 
     /// Every pixel's sums, row-major, top row first.
@@ -140,18 +211,26 @@ impl Film {
         for (mine, theirs) in self.pixels.iter_mut().zip(&other.pixels) {
             mine.merge(theirs);
         }
+        for (mine, theirs) in self.splat_sum.iter_mut().zip(&other.splat_sum) {
+            *mine += *theirs;
+        }
+        for (mine, theirs) in self.splat_sum_sq.iter_mut().zip(&other.splat_sum_sq) {
+            *mine += *theirs;
+        }
+        self.light_paths += other.light_paths;
         Ok(())
     }
 
-    /// The image of per-pixel means (zero where a pixel has no samples).
+    /// The image of per-pixel values ([`Film::pixel_value`]; zero where a pixel has neither
+    /// samples nor splats).
     pub fn to_image(&self) -> Image {
-        self.map_to_image(PixelSum::mean)
+        self.map_to_image(|i| self.value(i))
     }
 
-    /// The image of per-pixel variances of the mean (see [`PixelSum::variance_of_mean`]), as a
-    /// per-pixel z-test against a reference needs.
+    /// The image of per-pixel variances of the values ([`Film::pixel_variance`]), as a per-pixel
+    /// z-test against a reference needs.
     pub fn variance_of_mean_image(&self) -> Image {
-        self.map_to_image(PixelSum::variance_of_mean)
+        self.map_to_image(|i| self.variance(i))
     }
 
     /// Total number of samples added over all pixels.
@@ -159,12 +238,12 @@ impl Film {
         self.pixels.iter().map(|p| u64::from(p.count)).sum()
     }
 
-    /// An image with `f` applied to every pixel's sums.
-    fn map_to_image(&self, f: impl Fn(&PixelSum) -> Vec3) -> Image {
+    /// An image with `f` applied to every pixel's index.
+    fn map_to_image(&self, f: impl Fn(usize) -> Vec3) -> Image {
         Image {
             width: self.width,
             height: self.height,
-            data: self.pixels.iter().map(f).collect(),
+            data: (0..self.pixels.len()).map(f).collect(),
         }
     }
 }
@@ -172,6 +251,26 @@ impl Film {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn splats_add_their_share_and_their_variance() {
+        // 2 pixels, 4 light paths: pixel 0 gets splats 1 and 3, pixel 1 none. Each splat is
+        // worth N / L = 1/2: pixel 0 gains (1 + 3) / 2 = 2. Its splat variance:
+        // N² / L · (Σs²/L − (Σs/L)²) = 4/4 · (10/4 − 1) = 1.5.
+        let mut film = Film::new(2, 1);
+        film.add(UVec2::new(0, 0), Vec3::splat(5.0));
+        film.add_splat(UVec2::new(0, 0), Vec3::splat(1.0));
+        film.add_splat(UVec2::new(0, 0), Vec3::splat(3.0));
+        film.add_light_paths(4);
+        assert_eq!(film.pixel_value(UVec2::new(0, 0)), Vec3::splat(7.0));
+        assert_eq!(film.pixel_value(UVec2::new(1, 0)), Vec3::ZERO);
+        assert_eq!(film.pixel_variance(UVec2::new(0, 0)), Vec3::splat(1.5));
+        assert_eq!(film.to_image().pixel(0, 0), Vec3::splat(7.0));
+        let mut other = film.clone();
+        other.merge(&film).unwrap();
+        assert_eq!(other.light_paths(), 8);
+        assert_eq!(other.pixel_value(UVec2::new(0, 0)), Vec3::splat(7.0));
+    }
 
     #[test]
     fn mean_and_variance_by_hand() {

@@ -2,11 +2,13 @@
 //! `strata render` that tests and tools call in-process.
 
 use crate::adaptive::{Allocation, PixelCosts, pilot_seed, split_budget};
-use crate::driver::{BudgetError, RenderBudget, RenderOptions, RenderOutput, render};
+use crate::driver::{
+    BudgetError, LightPaths, RenderBudget, RenderOptions, RenderOutput, render_with_light_paths,
+};
 use crate::filter::{Filter, FilterError};
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
-use integrators::{PathIntegrator, RayCounters, RayLog, RayTally, reference};
+use integrators::{LightTracer, PathIntegrator, RayCounters, RayLog, RayTally, reference};
 use sampling::Sampler;
 use sampling::sampler::{
     BlueNoiseSampler, IndependentSampler, SamplerKind, SobolSampler, StratifiedSampler,
@@ -96,7 +98,7 @@ fn render_image<T: RayTally + Default + Send>(
         None
     };
     let Some((pilot_budget, image_budget)) = split else {
-        return render_sampled(scene, plan, filter, options, finish, None);
+        return render_sampled(scene, plan, filter, options, finish, None, true);
     };
     plan.budget.validate()?;
     let pilot_spp = pilot_budget.max_spp.unwrap_or(1);
@@ -107,7 +109,16 @@ fn render_image<T: RayTally + Default + Send>(
         ..*plan
     };
     let costs = PixelCosts::new(scene.desc.film.width, scene.desc.film.height);
-    let pilot = render_sampled(scene, &pilot_plan, filter, options, finish, Some(&costs))?;
+    // The pilot estimates the noise of the path tracer's samples; light paths would only cost.
+    let pilot = render_sampled(
+        scene,
+        &pilot_plan,
+        filter,
+        options,
+        finish,
+        Some(&costs),
+        false,
+    )?;
     if pilot.interrupted {
         return Ok(pilot);
     }
@@ -125,7 +136,15 @@ fn render_image<T: RayTally + Default + Send>(
         allocation: Some(Arc::new(Allocation::from_pilot(&pilot.film, &costs))),
         ..options.clone()
     };
-    let mut output = render_sampled(scene, &image_plan, filter, &image_options, finish, None)?;
+    let mut output = render_sampled(
+        scene,
+        &image_plan,
+        filter,
+        &image_options,
+        finish,
+        None,
+        true,
+    )?;
     output.pilot_spp = pilot.spp;
     output.spp += pilot.spp;
     output.seconds += pilot.seconds;
@@ -134,9 +153,10 @@ fn render_image<T: RayTally + Default + Send>(
     Ok(output)
 }
 
-/// [`render_image`] without a pilot, adding each sample's rays to `costs` if given. The
-/// per-sample code is compiled once per sampler type, so that sampling is inlined into the
-/// integrator rather than dispatched per call.
+/// [`render_image`] without a pilot, adding each sample's rays to `costs` if given, and tracing
+/// the light paths the plan's light tracing needs if `light_paths`. The per-sample code is
+/// compiled once per sampler type, so that sampling is inlined into the integrator rather than
+/// dispatched per call.
 fn render_sampled<T: RayTally + Default + Send>(
     scene: &RenderScene,
     plan: &RenderPlan,
@@ -144,44 +164,101 @@ fn render_sampled<T: RayTally + Default + Send>(
     options: &RenderOptions,
     finish: &(dyn Fn(&mut T) + Sync),
     costs: Option<&PixelCosts>,
+    light_paths: bool,
 ) -> Result<RenderOutput, BudgetError> {
+    let context = Context {
+        scene,
+        plan,
+        filter,
+        options,
+        finish,
+        costs,
+        light_paths,
+    };
     let (seed, spp) = (plan.seed, plan.sampler_spp);
     match plan.sampler {
-        SamplerKind::Independent => {
-            render_with(scene, plan, filter, options, finish, costs, || {
-                IndependentSampler::new(seed, spp)
-            })
-        }
-        SamplerKind::Stratified => render_with(scene, plan, filter, options, finish, costs, || {
-            StratifiedSampler::new(seed, spp)
-        }),
-        SamplerKind::BlueNoise => render_with(scene, plan, filter, options, finish, costs, || {
-            BlueNoiseSampler::new(seed, spp)
-        }),
-        SamplerKind::Sobol => render_with(scene, plan, filter, options, finish, costs, || {
-            SobolSampler::new(seed, spp)
-        }),
+        SamplerKind::Independent => render_with(&context, || IndependentSampler::new(seed, spp)),
+        SamplerKind::Stratified => render_with(&context, || StratifiedSampler::new(seed, spp)),
+        SamplerKind::BlueNoise => render_with(&context, || BlueNoiseSampler::new(seed, spp)),
+        SamplerKind::Sobol => render_with(&context, || SobolSampler::new(seed, spp)),
     }
+}
+
+/// The arguments of [`render_sampled`].
+struct Context<'a, T> {
+    scene: &'a RenderScene,
+    plan: &'a RenderPlan,
+    filter: &'a Filter,
+    options: &'a RenderOptions,
+    finish: &'a (dyn Fn(&mut T) + Sync),
+    costs: Option<&'a PixelCosts>,
+    light_paths: bool,
 }
 
 /// [`render_sampled`] with the samplers `new_sampler` makes.
 fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
-    scene: &RenderScene,
-    plan: &RenderPlan,
-    filter: &Filter,
-    options: &RenderOptions,
-    finish: &(dyn Fn(&mut T) + Sync),
-    costs: Option<&PixelCosts>,
+    context: &Context<'_, T>,
     new_sampler: impl Fn() -> S + Sync + Send,
 ) -> Result<RenderOutput, BudgetError> {
+    let Context {
+        scene,
+        plan,
+        filter,
+        options,
+        finish,
+        costs,
+        light_paths,
+    } = *context;
     let world = &scene.world;
     let camera: &Camera = &scene.camera;
-    let integrator = match plan.transport {
-        Transport::Reference(settings) => Integrator::Reference(settings),
-        Transport::Path(settings) => Integrator::Path(PathIntegrator::new(world, settings)),
+    let (width, height) = (scene.desc.film.width, scene.desc.film.height);
+    let (integrator, light_tracer) = match plan.transport {
+        Transport::Reference(settings) => (Integrator::Reference(settings), None),
+        Transport::Path(mut settings) => {
+            // The camera connection needs a pinhole and splats into one pixel (a box filter).
+            let tracer =
+                if settings.light_tracing && !camera.has_lens() && matches!(filter, Filter::Box) {
+                    LightTracer::new(world, &settings)
+                } else {
+                    None
+                };
+            // Without the tracer the path tracer must keep every path.
+            settings.light_tracing = tracer.is_some();
+            (
+                Integrator::Path(PathIntegrator::new(world, settings)),
+                tracer,
+            )
+        }
     };
+    let trace_light_path = |worker: &mut Worker<'_, S, T>,
+                            pixel: UVec2,
+                            sample_index: u32,
+                            splats: &mut Vec<(UVec2, Vec3)>| {
+        let Some(tracer) = &light_tracer else {
+            return;
+        };
+        // A key no image pixel has, so the light path's numbers are independent of the pixel
+        // sample's own.
+        let key = UVec2::new(pixel.x, pixel.y + height);
+        worker.sampler.start_pixel_sample(key, sample_index);
+        let mut add = |film: Vec2, value: Vec3| {
+            let target = film.floor().as_uvec2();
+            if target.x < width && target.y < height {
+                splats.push((target, value));
+            }
+        };
+        tracer.trace(
+            world,
+            &mut worker.sampler,
+            &|p| camera.connect(p),
+            &mut worker.tally,
+            &mut add,
+        );
+    };
+    let light_paths: Option<&LightPaths<'_, Worker<'_, S, T>>> =
+        (light_paths && light_tracer.is_some()).then_some(&trace_light_path);
     let has_lens = camera.has_lens();
-    render(
+    render_with_light_paths(
         scene.desc.film.width,
         scene.desc.film.height,
         &plan.budget,
@@ -220,6 +297,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             }
             radiance
         },
+        light_paths,
     )
 }
 

@@ -7,7 +7,9 @@ use clap::Parser;
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
 use sampling::sampler::SamplerKind;
-use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
+use scene::{
+    FilterDesc, IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures,
+};
 
 /// Candidates per RIS light choice in the `ris` preset and in `auto`. Measured on the
 /// many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
@@ -92,6 +94,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         mis: Mis::Off,
         light_selection: LightSelectionMode::Power,
         russian_roulette: roulette,
+        light_tracing: false,
     };
     let mis = PathSettings {
         mis: Mis::Power,
@@ -114,6 +117,9 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
     };
     if let (Transport::Path(settings), Some(rr)) = (&mut transport, args.rr) {
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
+    }
+    if let Transport::Path(settings) = &mut transport {
+        settings.light_tracing = args.light_tracing && light_tracing_applies(desc, features);
     }
 
     let sampler = match args.sampler {
@@ -184,6 +190,16 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
         light_selection,
         ..mis
     }
+}
+
+/// Whether caustics by light tracing can run on the scene and find anything: a pinhole camera
+/// and a box filter (the camera connection splats into one pixel), a delta BSDF to make
+/// caustics and a light with a surface to trace from.
+pub fn light_tracing_applies(desc: &SceneDesc, features: &SceneFeatures) -> bool {
+    !features.has_lens
+        && desc.film.filter == FilterDesc::Box
+        && features.has_delta_bsdfs
+        && features.has_hittable_lights
 }
 
 /// A 64-bit seed from the command line folded into the sampler's 32 bits.

@@ -77,6 +77,7 @@ fn splitting_samples_into_passes_gives_the_same_bits() {
             },
             &|| 0u64,
             &deterministic_sample,
+            None,
             &|_| {},
         );
     }
@@ -153,6 +154,7 @@ fn allocated_passes_give_the_same_bits_as_one_pass() {
             },
             &|| 0u64,
             &deterministic_sample,
+            None,
             &|_| {},
         );
     }

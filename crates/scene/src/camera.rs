@@ -2,6 +2,7 @@
 
 use geometry::Ray;
 use glam::{Mat4, Vec2, Vec3};
+use integrators::CameraConnection;
 use sampling::warp::sample_concentric_disk;
 
 /// A thin lens: rays leave a disc of `aperture_radius` and converge on the plane at
@@ -19,6 +20,7 @@ pub struct ThinLens {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     to_world: Mat4,
+    to_camera: Mat4,
     /// tan of half the field of view along x and y.
     tan_half_fov: Vec2,
     resolution: Vec2,
@@ -41,6 +43,7 @@ impl Camera {
         let tan_x = (0.5 * fov_x_degrees.to_radians()).tan();
         Self {
             to_world,
+            to_camera: to_world.inverse(),
             tan_half_fov: Vec2::new(tan_x, tan_x / aspect),
             resolution: Vec2::new(width as f32, height as f32),
             near_clip,
@@ -79,5 +82,38 @@ impl Camera {
         let origin = self.to_world.transform_point3(near);
         let dir = self.to_world.transform_vector3(dir_local).normalize();
         Ray::new(origin, dir)
+    }
+
+    /// Where the world point `p` appears to this camera if it is a pinhole (no aperture): the
+    /// film position, the end of a ray to the camera, and the camera's importance there (see
+    /// [`CameraConnection`]). `None` with a lens, and for points behind the near plane or off
+    /// the film. Assumes a rigid (or uniformly scaled) camera transform, as `lookat` gives.
+    pub fn connect(&self, p: Vec3) -> Option<CameraConnection> {
+        if self.has_lens() {
+            return None;
+        }
+        let local = self.to_camera.transform_point3(p);
+        if !(local.z > self.near_clip && local.is_finite()) {
+            return None;
+        }
+        let on_plane = local / local.z;
+        let ndc = Vec2::new(
+            -on_plane.x / self.tan_half_fov.x,
+            -on_plane.y / self.tan_half_fov.y,
+        );
+        let film = (ndc + Vec2::ONE) * 0.5 * self.resolution;
+        if !(film.cmpge(Vec2::ZERO).all() && film.cmplt(self.resolution).all()) {
+            return None;
+        }
+        let eye = self.to_world.transform_point3(Vec3::ZERO);
+        let distance_squared = (p - eye).length_squared();
+        let cos_theta = local.z / local.length();
+        let plane_area = 4.0 * self.tan_half_fov.x * self.tan_half_fov.y;
+        let importance = 1.0 / (plane_area * cos_theta.powi(3) * distance_squared);
+        importance.is_finite().then(|| CameraConnection {
+            film,
+            target: self.to_world.transform_point3(on_plane * self.near_clip),
+            importance,
+        })
     }
 }

@@ -46,6 +46,7 @@ impl SceneTransport {
             mis: Mis::Power,
             light_selection: LightSelectionMode::Power,
             russian_roulette: None,
+            light_tracing: false,
         }
     }
 }

@@ -94,6 +94,7 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
         mis: Mis::Power,
         light_selection: LightSelectionMode::Power,
         russian_roulette: None,
+        light_tracing: false,
     }
 }
 
@@ -169,6 +170,13 @@ pub fn configurations(base: PathSettings) -> Vec<Configuration> {
             settings: base,
             sampler: SamplerKind::BlueNoise,
         },
+        independent(
+            "light tracing",
+            PathSettings {
+                light_tracing: true,
+                ..base
+            },
+        ),
         Configuration {
             label: "sobol",
             settings: base,
@@ -239,16 +247,14 @@ pub fn z_test(a: &Film, b: Target<'_>, block: u32, alpha: f64) -> ZTest {
                 for dy in 0..block {
                     for dx in 0..block {
                         let pixel = origin + UVec2::new(dx, dy);
-                        let pa = a.pixel(pixel);
                         let (mean_b, var_b) = match &b {
-                            Target::Film(b) => (
-                                b.pixel(pixel).mean()[c],
-                                b.pixel(pixel).variance_of_mean()[c],
-                            ),
+                            Target::Film(b) => {
+                                (b.pixel_value(pixel)[c], b.pixel_variance(pixel)[c])
+                            }
                             Target::Exact(value) => (value(pixel)[c], 0.0),
                         };
-                        difference += f64::from(pa.mean()[c]) - f64::from(mean_b);
-                        variance += f64::from(pa.variance_of_mean()[c]) + f64::from(var_b);
+                        difference += f64::from(a.pixel_value(pixel)[c]) - f64::from(mean_b);
+                        variance += f64::from(a.pixel_variance(pixel)[c]) + f64::from(var_b);
                         magnitude = magnitude.max(f64::from(mean_b).abs());
                     }
                 }
@@ -272,7 +278,7 @@ pub fn film_mean(film: &Film) -> f64 {
     let mut sum = 0.0;
     for y in 0..film.height() {
         for x in 0..film.width() {
-            sum += film.pixel(UVec2::new(x, y)).mean().as_dvec3().element_sum();
+            sum += film.pixel_value(UVec2::new(x, y)).as_dvec3().element_sum();
         }
     }
     sum / f64::from(3 * film.width() * film.height())

@@ -1,0 +1,221 @@
+//! Caustics by light tracing: paths traced from the area lights, first through a mirror or glass,
+//! and connected to a pinhole camera from every non-delta surface they reach.
+//!
+//! A path tracer finds light that reaches a diffuse surface through a specular chain (light →
+//! glass → floor → camera) only when a BSDF-sampled direction happens to run through the chain
+//! into a light, which for a small light is rare and bright: such caustics, and the light they
+//! throw on to other surfaces, dominate the noise of scenes with glass. Traced from the light,
+//! the same paths are found by following the emitted light and joining each non-delta vertex to
+//! the camera with one shadow ray (pbrt-v4's `LightPathIntegrator`, restricted to these paths).
+//! Path space is split, not weighted: with [`crate::PathSettings::light_tracing`] on, the path
+//! tracer drops emission it meets by a delta bounce on a path whose first vertex after the
+//! camera is non-delta (k ≥ 3 vertices), and this tracer contributes exactly those paths (its
+//! light leaves the light's first hit by a delta lobe and reaches the camera from a non-delta
+//! vertex), so the sum is unbiased.
+//!
+//! Each light path stands for one pixel sample: with `L` paths for an `N`-pixel image, a pixel's
+//! value gains `N / L` times the sum of the paths' contributions to it (see `render::film`).
+//!
+//! Sampler dimensions, in order: light choice (1D), point on the light (2D), emitted direction
+//! (2D), then per vertex the BSDF lobe (1D) and direction (2D), and roulette (1D) with roulette.
+
+use crate::{PathSettings, RayTally, RussianRoulette, SurfaceHit, World};
+use geometry::Ray;
+use glam::{Vec2, Vec3};
+use lights::Light;
+use sampling::Sampler;
+use sampling::distribution::CdfTable;
+
+/// Where a surface point appears to a pinhole camera, and what a path reaching it is worth there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraConnection {
+    /// The film position the point projects to, in pixels ((0, 0) is the top-left corner).
+    pub film: Vec2,
+    /// Where the connecting shadow ray ends: the point of the camera's near plane on the line to
+    /// the camera (world space), so that what the camera's rays cannot see does not block it.
+    pub target: Vec3,
+    /// The camera's importance W_e times |cos θ| at the camera over the squared distance, in
+    /// units that make `weight · f · cos · importance` the point's contribution to one pixel
+    /// sample: 1 / (A cos³θ r²), with A the area of the image plane at unit distance and θ the
+    /// angle off the view axis.
+    pub importance: f32,
+}
+
+/// Traces light paths for caustics (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct LightTracer {
+    /// Indices into [`World::lights`] of the area lights, the only lights traced.
+    lights: Vec<u32>,
+    /// Power-proportional choice among `lights`.
+    selection: CdfTable,
+    /// Longest path, in vertices after the camera (Mitsuba's `max_depth`).
+    max_depth: u32,
+    /// Roulette on the light paths' bounces, as the path tracer's.
+    russian_roulette: Option<RussianRoulette>,
+}
+
+impl LightTracer {
+    /// The tracer for `world` with the path tracer's `settings` (depth and roulette); `None`
+    /// when the world has no area light with power.
+    pub fn new(world: &World, settings: &PathSettings) -> Option<Self> {
+        let lights: Vec<u32> = (0..world.lights().len() as u32)
+            .filter(|&i| {
+                matches!(
+                    world.lights()[i as usize],
+                    Light::Mesh(_) | Light::Sphere(_)
+                )
+            })
+            .collect();
+        let powers: Vec<f32> = lights
+            .iter()
+            .map(|&i| world.lights()[i as usize].power())
+            .collect();
+        let selection = CdfTable::new(&powers).ok()?;
+        Some(Self {
+            lights,
+            selection,
+            max_depth: settings
+                .max_depth
+                .unwrap_or(crate::reference::UNBOUNDED_DEPTH_CAP),
+            russian_roulette: settings.russian_roulette,
+        })
+    }
+
+    /// Traces one light path with `sampler` (already started on its pixel sample) and hands each
+    /// contribution to the camera to `splat` as (film position in pixels, value), the value in
+    /// units of one pixel sample's radiance (W m⁻² sr⁻¹, RGB).
+    pub fn trace(
+        &self,
+        world: &World,
+        sampler: &mut impl Sampler,
+        connect: &impl Fn(Vec3) -> Option<CameraConnection>,
+        tally: &mut impl RayTally,
+        splat: &mut impl FnMut(Vec2, Vec3),
+    ) {
+        let u_choice = sampler.next_1d();
+        let u_point = sampler.next_2d();
+        let u_dir = sampler.next_2d();
+        let (chosen, pmf, _) = self.selection.sample(u_choice);
+        let light = &world.lights()[self.lights[chosen] as usize];
+        let Some(emitted) = light.sample_emission(u_point, u_dir) else {
+            return;
+        };
+        let mut weight = emitted.weight / pmf;
+        let mut throughput = Vec3::ONE;
+        let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.dir);
+        // The vertex about to be found, counted from the light (1 = the first hit). A connection
+        // at vertex j makes a path of j + 1 vertices after the camera (j of them, and the light).
+        let mut vertex = 1;
+        while vertex < self.max_depth {
+            let Some(surface) = world.intersect(&ray, tally) else {
+                return;
+            };
+            let towards_light = -ray.dir;
+            let wo = surface.frame.to_local(towards_light);
+            if vertex > 1
+                && !surface.bsdf.is_delta()
+                && let Some(camera) = connect(surface.hit.p)
+            {
+                self.connect_to_camera(
+                    world,
+                    &surface,
+                    wo,
+                    towards_light,
+                    camera,
+                    tally,
+                    weight,
+                    splat,
+                );
+            }
+            if vertex + 1 >= self.max_depth {
+                return;
+            }
+            let u_lobe = sampler.next_1d();
+            let u_bounce = sampler.next_2d();
+            let Some(bounce) = surface.bsdf.sample(wo, u_lobe, u_bounce) else {
+                return;
+            };
+            // Light that leaves the first vertex by a non-delta lobe is the path tracer's.
+            if vertex == 1 && !bounce.is_delta {
+                return;
+            }
+            let outgoing = surface.frame.to_world(bounce.wi);
+            // The sample's weight is for radiance, which refraction scales by 1/η²; the light
+            // carried by a path from the light is not (pbrt's importance transport), and shading
+            // normals differ from geometric ones in the two directions (Veach's correction).
+            let ng = surface.hit.ng;
+            let adjoint = (bounce.eta * bounce.eta)
+                * shading_normal_correction(wo.z, bounce.wi.z, ng, towards_light, outgoing);
+            let factor = bounce.f * (bounce.wi.z.abs() / bounce.pdf_solid_angle * adjoint);
+            weight *= factor;
+            throughput *= factor;
+            if let Some(roulette) = self.russian_roulette {
+                let u_survive = sampler.next_1d();
+                if vertex >= roulette.start_depth {
+                    let survival = throughput.max_element().clamp(0.0, 1.0);
+                    if u_survive >= survival {
+                        return;
+                    }
+                    weight /= survival;
+                    throughput /= survival;
+                }
+            }
+            if weight == Vec3::ZERO || !weight.is_finite() {
+                return;
+            }
+            vertex += 1;
+            ray = Ray::spawn(surface.hit.p, ng, outgoing);
+        }
+    }
+
+    /// Joins the non-delta vertex `surface` (light arriving from `towards_light`, `wo` in its
+    /// local frame) to the camera and splats the path's contribution if nothing blocks it.
+    #[allow(clippy::too_many_arguments)]
+    fn connect_to_camera(
+        &self,
+        world: &World,
+        surface: &SurfaceHit<'_>,
+        wo: Vec3,
+        towards_light: Vec3,
+        camera: CameraConnection,
+        tally: &mut impl RayTally,
+        weight: Vec3,
+        splat: &mut impl FnMut(Vec2, Vec3),
+    ) {
+        let to_camera = (camera.target - surface.hit.p).normalize_or_zero();
+        let wc = surface.frame.to_local(to_camera);
+        // Radiance leaves towards the camera; light arrives from the light's side.
+        let f = surface.bsdf.eval(wc, wo);
+        let ng = surface.hit.ng;
+        let cos_light_geometric = ng.dot(towards_light).abs();
+        if f == Vec3::ZERO
+            || cos_light_geometric <= 0.0
+            || !world.unoccluded(surface.hit.p, ng, camera.target, Vec3::ZERO, tally)
+        {
+            return;
+        }
+        // The path tracer's measurement uses the shading normal's cosine towards the light and
+        // the geometric one towards the camera (its ray's hit).
+        let cosines = wo.z.abs() * ng.dot(to_camera).abs() / cos_light_geometric;
+        splat(camera.film, weight * f * (cosines * camera.importance));
+    }
+}
+
+/// |n_s · wo| |n_g · wi| / (|n_g · wo| |n_s · wi|) for light arriving from `wo` and leaving along
+/// `wi` (world directions; `cos_wo_shading`, `cos_wi_shading` their shading-frame cosines): the
+/// factor by which a BSDF sample's radiance weight differs from its weight for light carried
+/// from the light (Veach 1997, §5.3); 1 where the shading normal is the geometric one.
+fn shading_normal_correction(
+    cos_wo_shading: f32,
+    cos_wi_shading: f32,
+    ng: Vec3,
+    wo: Vec3,
+    wi: Vec3,
+) -> f32 {
+    let denominator = ng.dot(wo).abs() * cos_wi_shading.abs();
+    if denominator > 0.0 {
+        cos_wo_shading.abs() * ng.dot(wi).abs() / denominator
+    } else {
+        0.0
+    }
+}
