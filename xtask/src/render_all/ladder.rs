@@ -32,6 +32,8 @@ pub struct SceneTransport {
     pub hide_emitters: bool,
     /// The scene's Russian roulette start depth.
     pub roulette: RussianRoulette,
+    /// Whether caustics by light tracing apply (`render::technique::light_tracing_applies`).
+    pub light_tracing: bool,
 }
 
 impl SceneTransport {
@@ -53,8 +55,9 @@ impl SceneTransport {
 
 /// The ladder for a scene with `features`: reference → BSDF sampling only → NEE without MIS →
 /// MIS → (uniform and RIS light selection, with more than one light) → + roulette → +
-/// stratified → + blue noise → + Sobol → + adaptive sampling (Sobol), and `auto`
-/// (`auto_settings` of MIS with roulette, Sobol sampler, adaptive sampling). Light selection and
+/// stratified → + blue noise → + Sobol → + adaptive sampling (Sobol) → + light tracing (where
+/// it applies), and `auto` (`auto_settings` of MIS with roulette, Sobol sampler, adaptive
+/// sampling, light tracing where it applies). Light selection and
 /// the later rungs build on MIS (on NEE where no light can be
 /// hit, on BSDF sampling where none can be sampled). BSDF-only is left out when the scene has delta lights
 /// (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be sampled; MIS
@@ -134,8 +137,19 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
         adaptive: true,
         ..rung("+adaptive", roulette, SamplerKind::Sobol)
     });
+    if transport.light_tracing {
+        let traced = PathSettings {
+            light_tracing: true,
+            ..roulette
+        };
+        rungs.push(Configuration {
+            adaptive: true,
+            ..rung("+light-tracing", traced, SamplerKind::Sobol)
+        });
+    }
     let auto = PathSettings {
         russian_roulette: Some(transport.roulette),
+        light_tracing: transport.light_tracing,
         ..mis
     };
     rungs.push(Configuration {
@@ -154,6 +168,7 @@ mod tests {
             max_depth: Some(8),
             hide_emitters: false,
             roulette: RussianRoulette { start_depth: 5 },
+            light_tracing: false,
         }
     }
 
@@ -208,5 +223,26 @@ mod tests {
         };
         assert_eq!(roulette.mis, Mis::Off);
         assert!(roulette.russian_roulette.is_some());
+    }
+
+    #[test]
+    fn light_tracing_rung_and_auto_only_where_it_applies() {
+        let without = ladder(&transport(), &features(1, false));
+        assert!(!names(&without).contains(&"+light-tracing"));
+        let with = ladder(
+            &SceneTransport {
+                light_tracing: true,
+                ..transport()
+            },
+            &features(1, false),
+        );
+        assert!(names(&with).contains(&"+light-tracing"));
+        for rungs in [&without, &with] {
+            let auto = rungs.last().expect("auto is last");
+            let Transport::Path(settings) = auto.transport else {
+                panic!("auto is a path configuration");
+            };
+            assert_eq!(settings.light_tracing, rungs.len() == with.len());
+        }
     }
 }

@@ -14,6 +14,7 @@ pub use run::render_all;
 
 use integrators::RussianRoulette;
 use ladder::SceneTransport;
+use render::technique::light_tracing_applies;
 use scene::{IntegratorKind, RenderScene};
 use std::path::{Path, PathBuf};
 
@@ -50,6 +51,7 @@ impl SuiteScene {
             roulette: RussianRoulette {
                 start_depth: integrator.rr_depth.max(1),
             },
+            light_tracing: light_tracing_applies(&self.scene.desc, &self.scene.features),
         }
     }
 }
