@@ -1,21 +1,25 @@
-//! Gathering the primitives of all shapes and building the CWBVH over them.
-
-use std::time::Duration;
+//! Gathering the primitives of all shapes and building the hierarchy over them.
 
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb as BvhAabb;
-use obvhs::cwbvh::CwBvh;
-use obvhs::cwbvh::builder::build_cwbvh;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::ploc::PlocBuilder;
 
+use super::collapse::{Tree, collapse};
+use super::node::{ChildRef, Node4};
 use super::prim::{PrimGeom, PrimInfo, direction_of};
 use crate::sphere::SphereGeom;
 use crate::triangle::TriangleCoords;
 use crate::{Aabb, Shape};
 
+/// The most primitives a leaf holds.
+const MAX_LEAF: u32 = 1;
+
 /// The built hierarchy and its primitives in BVH order.
 pub(crate) struct Built {
-    pub bvh: CwBvh,
+    pub nodes: Vec<Node4>,
+    pub stack_need: usize,
     pub geoms: Vec<PrimGeom>,
     pub infos: Vec<PrimInfo>,
     pub bounds: Aabb,
@@ -80,34 +84,41 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
     let bounds = boxes.iter().fold(Aabb::EMPTY, |acc, b| {
         acc.union(Aabb::new(b.min.into(), b.max.into()))
     });
-    let bvh = if boxes.is_empty() {
-        CwBvh::default()
-    } else {
-        let padded: Vec<BvhAabb> = boxes
-            .iter()
-            .enumerate()
-            .map(|(i, b)| tie_breaking_pad(i, b))
-            .collect();
-        build_cwbvh(
-            &padded,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        )
-    };
+    assert!(
+        boxes.len() <= ChildRef::MAX_PRIMITIVES,
+        "{} primitives; at most {} fit the hierarchy",
+        boxes.len(),
+        ChildRef::MAX_PRIMITIVES
+    );
+    let padded: Vec<BvhAabb> = boxes
+        .iter()
+        .enumerate()
+        .map(|(i, b)| tie_breaking_pad(i, b))
+        .collect();
+    let tree = binary_then_collapsed(&padded);
     Built {
-        geoms: bvh
-            .primitive_indices
-            .iter()
-            .map(|&i| geoms[i as usize])
-            .collect(),
-        infos: bvh
-            .primitive_indices
-            .iter()
-            .map(|&i| infos[i as usize])
-            .collect(),
-        bvh,
+        geoms: tree.order.iter().map(|&i| geoms[i as usize]).collect(),
+        infos: tree.order.iter().map(|&i| infos[i as usize]).collect(),
+        nodes: tree.nodes,
+        stack_need: tree.stack_need,
         bounds,
     }
+}
+
+/// obvhs' binary BVH over `boxes` with the settings of its `medium_build` (PLOC, then SAH-driven
+/// reinsertion), collapsed to four children per node.
+fn binary_then_collapsed(boxes: &[BvhAabb]) -> Tree {
+    let params = BvhBuildParams::medium_build();
+    let count = u32::try_from(boxes.len()).expect("fewer than 2^32 primitives");
+    let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
+        params.ploc_search_distance,
+        boxes,
+        (0..count).collect(),
+        params.sort_precision,
+        params.search_depth_threshold,
+    );
+    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
+    collapse(&bvh2, MAX_LEAF)
 }
 
 /// Box `b` of primitive `i`, grown by a pseudo-random fraction of `1e-4` of its size (plus a few

@@ -1,39 +1,40 @@
 //! The scene's bounding volume hierarchy over all shapes.
 
 mod build;
+mod collapse;
 mod node;
 mod prim;
 mod query;
 mod walk;
 
-use glam::{UVec2, Vec2, Vec3};
-use obvhs::cwbvh::CwBvh;
-use obvhs::faststack::{FastStack, HeapStack, StackStack};
+use glam::{Vec2, Vec3};
 
 use crate::{Aabb, Hit, Ray, Shape, Sphere};
-use node::hit_children;
+use node::Node4;
 use prim::{PrimGeom, PrimHit, PrimInfo, direction_of};
 use query::RayQuery;
-use walk::{FIXED_STACK, SMALL_STACK, StackKind, Walk};
+use walk::{ArrayStack, FIXED_STACK, SMALL_STACK, StackKind};
 
-/// A compressed wide BVH (obvhs' CWBVH, built by PLOC) over every triangle and sphere of a
-/// scene, owning the shapes. Queries do not allocate (except on pathologically deep trees, see
-/// below) and may run from many threads at once.
+/// A 4-wide BVH over every triangle and sphere of a scene, owning the shapes: obvhs' binary BVH
+/// (built by PLOC) collapsed to nodes that test four uncompressed child boxes at once. Queries
+/// do not allocate (except on pathologically deep trees, see below) and may run from many
+/// threads at once.
 ///
 /// Triangles with no area or a non-finite vertex, and spheres with a non-positive or non-finite
 /// radius or centre, are left out: rays never hit them.
 pub struct Accel {
     shapes: Vec<Shape>,
-    bvh: CwBvh,
-    /// Primitive geometry in BVH order: a leaf's `primitive_id` indexes it directly.
+    /// The hierarchy, root first (empty when there are no primitives).
+    nodes: Vec<Node4>,
+    /// Primitive geometry in BVH order: leaves refer to runs of it.
     geoms: Vec<PrimGeom>,
     /// Ids and normals of the primitives, in the same order as `geoms`.
     infos: Vec<PrimInfo>,
     bounds: Aabb,
     /// The traversal stack the tree needs: small for small scenes, on the heap (allocated per
-    /// query, sized to `depth`) for trees too deep for the fixed stack.
+    /// query, sized to `stack_need`) for trees too deep for the fixed stack.
     stack: StackKind,
-    depth: usize,
+    stack_need: usize,
 }
 
 impl Accel {
@@ -44,15 +45,14 @@ impl Accel {
     /// creates them.
     pub fn new(shapes: Vec<Shape>) -> Accel {
         let built = build::build(&shapes);
-        let depth = walk::depth(&built.bvh);
         Accel {
             shapes,
-            bvh: built.bvh,
+            nodes: built.nodes,
             geoms: built.geoms,
             infos: built.infos,
             bounds: built.bounds,
-            stack: StackKind::for_depth(depth),
-            depth,
+            stack: StackKind::for_need(built.stack_need),
+            stack_need: built.stack_need,
         }
     }
 
@@ -72,10 +72,20 @@ impl Accel {
             return None;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        let (nodes, geoms) = (&self.nodes[..], &self.geoms[..]);
         let found = match self.stack {
-            StackKind::Small => self.closest(fixed_walk::<SMALL_STACK>(&query), &query, t_max),
-            StackKind::Fixed => self.closest(fixed_walk::<FIXED_STACK>(&query), &query, t_max),
-            StackKind::Heap => self.closest(self.deep_walk(&query), &query, t_max),
+            StackKind::Small => {
+                let mut stack = ArrayStack::<_, SMALL_STACK>::new();
+                walk::closest(nodes, geoms, &mut stack, &query, t_max)
+            }
+            StackKind::Fixed => {
+                let mut stack = ArrayStack::<_, FIXED_STACK>::new();
+                walk::closest(nodes, geoms, &mut stack, &query, t_max)
+            }
+            StackKind::Heap => {
+                let mut stack = Vec::with_capacity(self.stack_need);
+                walk::closest(nodes, geoms, &mut stack, &query, t_max)
+            }
         };
         found.map(|(id, hit)| self.surface_hit(ray, id, hit))
     }
@@ -86,64 +96,20 @@ impl Accel {
             return false;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        let (nodes, geoms) = (&self.nodes[..], &self.geoms[..]);
         match self.stack {
-            StackKind::Small => self.any(fixed_walk::<SMALL_STACK>(&query), &query, t_max),
-            StackKind::Fixed => self.any(fixed_walk::<FIXED_STACK>(&query), &query, t_max),
-            StackKind::Heap => self.any(self.deep_walk(&query), &query, t_max),
-        }
-    }
-
-    fn deep_walk(&self, query: &RayQuery) -> Walk<HeapStack<UVec2>> {
-        Walk::new(HeapStack::new_with_capacity(self.depth + 1), query.neg)
-    }
-
-    /// The closest primitive hit with `0 < t < t_max`: its index in `geoms` and the hit.
-    #[inline(always)]
-    fn closest<S: FastStack<UVec2>>(
-        &self,
-        mut walk: Walk<S>,
-        query: &RayQuery,
-        t_max: f32,
-    ) -> Option<(usize, PrimHit)> {
-        let mut closest = t_max;
-        let mut found = None;
-        let mut node;
-        obvhs::traverse!(
-            self.bvh,
-            node,
-            walk,
-            hit_children(node, query, closest, walk.oct_inv4),
-            {
-                let id = walk.primitive_id as usize;
-                if let Some(hit) = self.geoms[id].intersect(query, closest) {
-                    closest = hit.t();
-                    found = Some((id, hit));
-                }
+            StackKind::Small => {
+                let mut stack = ArrayStack::<_, SMALL_STACK>::new();
+                walk::any(nodes, geoms, &mut stack, &query, t_max)
             }
-        );
-        found
-    }
-
-    /// Whether any primitive is hit with `0 < t < t_max`.
-    #[inline(always)]
-    fn any<S: FastStack<UVec2>>(&self, mut walk: Walk<S>, query: &RayQuery, t_max: f32) -> bool {
-        let mut node;
-        'search: {
-            obvhs::traverse!(
-                self.bvh,
-                node,
-                walk,
-                hit_children(node, query, t_max, walk.oct_inv4),
-                {
-                    if self.geoms[walk.primitive_id as usize]
-                        .intersect(query, t_max)
-                        .is_some()
-                    {
-                        break 'search true;
-                    }
-                }
-            );
-            false
+            StackKind::Fixed => {
+                let mut stack = ArrayStack::<_, FIXED_STACK>::new();
+                walk::any(nodes, geoms, &mut stack, &query, t_max)
+            }
+            StackKind::Heap => {
+                let mut stack = Vec::with_capacity(self.stack_need);
+                walk::any(nodes, geoms, &mut stack, &query, t_max)
+            }
         }
     }
 
@@ -196,10 +162,6 @@ impl Accel {
             _ => unreachable!("primitive {id} disagrees with its shape"),
         }
     }
-}
-
-fn fixed_walk<const N: usize>(query: &RayQuery) -> Walk<StackStack<UVec2, N>> {
-    Walk::new(StackStack::default(), query.neg)
 }
 
 #[cfg(test)]

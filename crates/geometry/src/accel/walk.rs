@@ -1,21 +1,18 @@
-//! Traversal state for obvhs' `traverse!` macro with a stack of our choosing.
-//!
-//! obvhs' own state has a fixed 32-entry stack that silently overwrites its top entry when a tree
-//! is deeper than that. The macro only needs a value with the same fields, so the hierarchy picks
-//! a fixed stack for ordinary trees and a heap stack sized to the tree for pathological ones.
+//! Traversal of the 4-wide hierarchy: closest hit (nearest child first, skipping what lies beyond
+//! the closest hit so far) and any hit (stopping at the first), each over a stack of our choosing.
 
-use glam::{BVec3A, UVec2, uvec2};
-use obvhs::cwbvh::CwBvh;
-use obvhs::faststack::FastStack;
+use glam::Vec4;
 
-/// Capacity of the fixed traversal stack. A stack of capacity `n` keeps `n - 1` entries intact
-/// (obvhs' `StackStack` overwrites its last slot when full), and traversal pushes at most one
-/// entry per tree level below the root.
-pub(crate) const FIXED_STACK: usize = 32;
+use super::node::{ChildRef, Node4};
+use super::prim::{PrimGeom, PrimHit};
+use super::query::RayQuery;
 
-/// Capacity of the stack for shallow trees (small scenes), where zeroing the 32-entry stack for
+/// Capacity of the stack for shallow trees (small scenes), where clearing a larger stack for
 /// every ray is a measurable part of a ray's cost.
-pub(crate) const SMALL_STACK: usize = 8;
+pub(crate) const SMALL_STACK: usize = 16;
+
+/// Capacity of the fixed stack for ordinary trees.
+pub(crate) const FIXED_STACK: usize = 64;
 
 /// Which traversal stack a tree needs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,11 +26,11 @@ pub(crate) enum StackKind {
 }
 
 impl StackKind {
-    /// The smallest stack that holds the traversal of a tree `depth` levels deep.
-    pub fn for_depth(depth: usize) -> Self {
-        if depth + 1 < SMALL_STACK {
+    /// The smallest stack that holds `need` entries.
+    pub fn for_need(need: usize) -> Self {
+        if need <= SMALL_STACK {
             StackKind::Small
-        } else if depth + 1 < FIXED_STACK {
+        } else if need <= FIXED_STACK {
             StackKind::Fixed
         } else {
             StackKind::Heap
@@ -41,49 +38,192 @@ impl StackKind {
     }
 }
 
-/// Traversal state, field for field what `obvhs::traverse!` reads and writes.
-pub(crate) struct Walk<S> {
-    pub stack: S,
-    pub current_group: UVec2,
-    pub primitive_group: UVec2,
-    pub oct_inv4: u32,
-    pub primitive_id: u32,
-    pub hitmask: u32,
+/// A last-in first-out stack of traversal entries.
+pub(crate) trait Stack<T> {
+    fn push(&mut self, item: T);
+    fn pop(&mut self) -> Option<T>;
 }
 
-impl<S: FastStack<UVec2>> Walk<S> {
-    /// Starts at the root of a non-empty tree, visiting children in the order that suits a ray
-    /// whose direction has the negative components `neg`.
-    pub fn new(stack: S, neg: BVec3A) -> Self {
-        let axis_bits = |axis: usize, bits: u32| if neg.test(axis) { 0 } else { bits };
+/// A stack of at most `N` entries on the call stack. Pushing more is a bug (the hierarchy picks
+/// a stack that holds its [`super::collapse::Tree::stack_need`]) and panics.
+pub(crate) struct ArrayStack<T, const N: usize> {
+    items: [T; N],
+    len: usize,
+}
+
+impl<T: Copy + Default, const N: usize> ArrayStack<T, N> {
+    #[inline(always)]
+    pub fn new() -> Self {
         Self {
-            stack,
-            current_group: uvec2(0, 0x8000_0000),
-            primitive_group: UVec2::ZERO,
-            oct_inv4: axis_bits(0, 0x0404_0404)
-                | axis_bits(1, 0x0202_0202)
-                | axis_bits(2, 0x0101_0101),
-            primitive_id: 0,
-            hitmask: 0,
+            items: [T::default(); N],
+            len: 0,
         }
     }
 }
 
-/// Number of node levels of `bvh` (1 for a root whose children are all leaves, 0 when empty).
-pub(crate) fn depth(bvh: &CwBvh) -> usize {
-    if bvh.nodes.is_empty() {
-        return 0;
+impl<T: Copy, const N: usize> Stack<T> for ArrayStack<T, N> {
+    #[inline(always)]
+    fn push(&mut self, item: T) {
+        self.items[self.len] = item;
+        self.len += 1;
     }
-    let mut deepest = 0;
-    let mut pending = vec![(0usize, 1usize)];
-    while let Some((index, level)) = pending.pop() {
-        deepest = deepest.max(level);
-        let node = &bvh.nodes[index];
-        pending.extend(
-            (0..8)
-                .filter(|&c| !node.is_leaf(c))
-                .map(|c| (node.child_node_index(c) as usize, level + 1)),
-        );
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<T> {
+        self.len = self.len.checked_sub(1)?;
+        Some(self.items[self.len])
     }
-    deepest
+}
+
+impl<T> Stack<T> for Vec<T> {
+    #[inline(always)]
+    fn push(&mut self, item: T) {
+        Vec::push(self, item);
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<T> {
+        Vec::pop(self)
+    }
+}
+
+/// A child left for later, with the distance at which the ray enters its box.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Pending {
+    child: ChildRef,
+    t_enter: f32,
+}
+
+impl Default for Pending {
+    fn default() -> Self {
+        Self {
+            child: ChildRef::EMPTY,
+            t_enter: 0.0,
+        }
+    }
+}
+
+/// The closest primitive hit with `0 < t < t_max`: its index (BVH order) and the hit.
+#[inline(always)]
+pub(crate) fn closest(
+    nodes: &[Node4],
+    geoms: &[PrimGeom],
+    stack: &mut impl Stack<Pending>,
+    query: &RayQuery,
+    t_max: f32,
+) -> Option<(usize, PrimHit)> {
+    let mut closest = t_max;
+    let mut found = None;
+    let mut current = ChildRef::node(0);
+    loop {
+        if let Some(index) = current.inner() {
+            let node = &nodes[index];
+            let (mask, t_enter) = node.hit(&query.boxes, closest);
+            if mask != 0 {
+                current = nearest_first(node, mask, t_enter, stack);
+                continue;
+            }
+        } else {
+            for id in current.primitives() {
+                if let Some(hit) = geoms[id].intersect(query, closest) {
+                    closest = hit.t();
+                    found = Some((id, hit));
+                }
+            }
+        }
+        current = loop {
+            match stack.pop() {
+                None => return found,
+                Some(entry) if entry.t_enter <= closest => break entry.child,
+                Some(_) => {}
+            }
+        };
+    }
+}
+
+/// The child of `node` to visit next among those in `mask` (non-empty): the nearest; the others
+/// are pushed, the farthest first.
+#[inline(always)]
+fn nearest_first(
+    node: &Node4,
+    mask: u32,
+    t_enter: Vec4,
+    stack: &mut impl Stack<Pending>,
+) -> ChildRef {
+    let entry = |lane: u32| Pending {
+        child: node.children[lane as usize],
+        t_enter: t_enter[lane as usize],
+    };
+    let a = entry(mask.trailing_zeros());
+    let rest = mask & (mask - 1);
+    if rest == 0 {
+        return a.child;
+    }
+    let b = entry(rest.trailing_zeros());
+    let rest = rest & (rest - 1);
+    if rest == 0 {
+        let (near, far) = if b.t_enter < a.t_enter {
+            (b, a)
+        } else {
+            (a, b)
+        };
+        stack.push(far);
+        return near.child;
+    }
+    // Three or four: sorted farthest first by insertion.
+    let mut sorted = [a, b, entry(rest.trailing_zeros()), Pending::default()];
+    let rest = rest & (rest - 1);
+    let len = if rest == 0 {
+        3
+    } else {
+        sorted[3] = entry(rest.trailing_zeros());
+        4
+    };
+    for i in 1..len {
+        let mut j = i;
+        while j > 0 && sorted[j - 1].t_enter < sorted[j].t_enter {
+            sorted.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    for &pending in &sorted[..len - 1] {
+        stack.push(pending);
+    }
+    sorted[len - 1].child
+}
+
+/// Whether any primitive is hit with `0 < t < t_max`.
+#[inline(always)]
+pub(crate) fn any(
+    nodes: &[Node4],
+    geoms: &[PrimGeom],
+    stack: &mut impl Stack<ChildRef>,
+    query: &RayQuery,
+    t_max: f32,
+) -> bool {
+    let mut current = ChildRef::node(0);
+    loop {
+        if let Some(index) = current.inner() {
+            let node = &nodes[index];
+            let (mut mask, _) = node.hit(&query.boxes, t_max);
+            if mask != 0 {
+                current = node.children[mask.trailing_zeros() as usize];
+                mask &= mask - 1;
+                while mask != 0 {
+                    stack.push(node.children[mask.trailing_zeros() as usize]);
+                    mask &= mask - 1;
+                }
+                continue;
+            }
+        } else if current
+            .primitives()
+            .any(|id| geoms[id].intersect(query, t_max).is_some())
+        {
+            return true;
+        }
+        match stack.pop() {
+            Some(child) => current = child,
+            None => return false,
+        }
+    }
 }
