@@ -45,6 +45,7 @@ mod ray;
 mod shape;
 mod sphere;
 mod triangle;
+mod triangle4;
 
 pub use aabb::Aabb;
 pub use accel::Accel;

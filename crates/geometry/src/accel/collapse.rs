@@ -3,47 +3,60 @@
 //! Top-down and greedy: a node's children start as the two children of a binary node, and the
 //! child with the largest surface area that is still an inner node is replaced by its two
 //! children until there are four (the rule of Wald et al. 2008, "Getting rid of packets", which
-//! Embree's BVH4 builders follow). A binary subtree with at most `max_leaf` primitives becomes a
-//! leaf, its primitives stored contiguously in the subtree's order.
+//! Embree's BVH4 builders follow). A binary subtree becomes a leaf when it is a binary leaf, or
+//! when it holds at most `max_leaf` primitives that may share a leaf.
 
 use obvhs::aabb::Aabb as BvhAabb;
 use obvhs::bvh2::Bvh2;
 
 use super::node::{ChildRef, Node4};
 
-/// The 4-wide hierarchy: nodes (the root at index 0) and the order of the primitives its leaves
-/// refer to.
+/// The 4-wide hierarchy: its nodes, the root at index 0.
 pub(crate) struct Tree {
     pub nodes: Vec<Node4>,
-    /// `order[i]` is the input index of the primitive at BVH position `i`.
-    pub order: Vec<u32>,
     /// The most traversal stack entries a query can need: over the paths from the root, the most
     /// non-empty siblings left behind (`children - 1` summed over the path's inner nodes).
     pub stack_need: usize,
 }
 
-/// Collapses `bvh2` (any shape: leaves with any number of primitives, chains thousands of levels
-/// deep) into a 4-wide tree whose leaves hold at most `max_leaf` primitives (or one binary leaf,
-/// whatever its size).
-pub(crate) fn collapse(bvh2: &Bvh2, max_leaf: u32) -> Tree {
+/// Collapses `bvh2`, whose leaves hold one primitive each (PLOC's do), into a 4-wide tree.
+///
+/// Primitives for which `groupable` is true share leaves, up to `max_leaf` of them; the others
+/// have a leaf each. `leaf` receives the primitives (input indices, in the binary subtree's
+/// order) of every leaf and returns the reference the leaf's parent stores.
+///
+/// # Panics
+/// If a binary leaf holds more than one primitive.
+pub(crate) fn collapse(
+    bvh2: &Bvh2,
+    max_leaf: u32,
+    groupable: impl Fn(u32) -> bool,
+    mut leaf: impl FnMut(&[u32]) -> ChildRef,
+) -> Tree {
     let mut tree = Tree {
         nodes: Vec::new(),
-        order: Vec::with_capacity(bvh2.primitive_indices.len()),
         stack_need: 0,
     };
     if bvh2.nodes.is_empty() {
         return tree;
     }
-    let counts = subtree_counts(bvh2);
-    let is_leaf = |index: usize| bvh2.nodes[index].is_leaf() || counts[index] <= max_leaf;
+    // A primitive that may not share a leaf weighs more than a full leaf.
+    let weight = |prim: u32| if groupable(prim) { 1 } else { max_leaf + 1 };
+    let leaves = leaf_choices(bvh2, weight, max_leaf);
+    let is_leaf = |index: usize| leaves[index];
+    let (mut prims, mut scratch) = (Vec::new(), Vec::new());
+    let mut leaf_of = |index: usize| {
+        prims.clear();
+        gather(bvh2, index, &mut prims, &mut scratch);
+        leaf(&prims)
+    };
 
     tree.nodes.push(Node4::EMPTY);
     // (binary node, 4-wide node it fills).
     let mut pending = Vec::new();
     if is_leaf(0) {
-        let child = leaf(bvh2, 0, &mut tree.order);
         let b = bvh2.nodes[0].aabb();
-        tree.nodes[0].set(0, b.min.into(), b.max.into(), child);
+        tree.nodes[0].set(0, b.min.into(), b.max.into(), leaf_of(0));
     } else {
         pending.push((0, 0));
     }
@@ -52,7 +65,7 @@ pub(crate) fn collapse(bvh2: &Bvh2, max_leaf: u32) -> Tree {
         let mut node = Node4::EMPTY;
         for (lane, &child) in children.as_slice().iter().enumerate() {
             let content = if is_leaf(child) {
-                leaf(bvh2, child, &mut tree.order)
+                leaf_of(child)
             } else {
                 tree.nodes.push(Node4::EMPTY);
                 pending.push((child, tree.nodes.len() - 1));
@@ -105,44 +118,56 @@ fn area(bvh2: &Bvh2, index: usize) -> f32 {
     b.half_area()
 }
 
-/// Appends the primitives of the binary subtree at `root` to `order` (left before right) and
-/// returns the leaf that refers to them.
-fn leaf(bvh2: &Bvh2, root: usize, order: &mut Vec<u32>) -> ChildRef {
-    let first = order.len();
-    let mut pending = vec![root];
+/// Appends the primitives of the binary subtree at `root` to `prims` (left before right);
+/// `pending` is scratch space.
+fn gather(bvh2: &Bvh2, root: usize, prims: &mut Vec<u32>, pending: &mut Vec<usize>) {
+    pending.push(root);
     while let Some(index) = pending.pop() {
         let node = &bvh2.nodes[index];
         let start = node.first_index as usize;
         if node.is_leaf() {
-            order.extend_from_slice(
-                &bvh2.primitive_indices[start..start + node.prim_count as usize],
-            );
+            assert_eq!(node.prim_count, 1, "a binary leaf of several primitives");
+            prims.push(bvh2.primitive_indices[start]);
         } else {
             pending.push(start + 1);
             pending.push(start);
         }
     }
-    let count = u32::try_from(order.len() - first).expect("a leaf of fewer than 2^32 primitives");
-    ChildRef::leaf(first, count)
 }
 
-/// The number of primitives under every binary node.
-fn subtree_counts(bvh2: &Bvh2) -> Vec<u32> {
-    let mut counts = vec![0; bvh2.nodes.len()];
-    // (node, whether its children are counted already).
+/// Cost of testing a triangle packet (or a sphere) relative to the traversal cost of a binary
+/// node, for the surface area heuristic that decides which subtrees become leaves.
+const LEAF_COST: f32 = 4.0;
+
+/// Which binary nodes become leaves: binary leaves, and subtrees whose primitives weigh at most
+/// `max_leaf` in all when the surface area heuristic favours one leaf over the subtree (so the
+/// two flat walls of a room stay apart, their common box being the whole room).
+fn leaf_choices(bvh2: &Bvh2, weight: impl Fn(u32) -> u32, max_leaf: u32) -> Vec<bool> {
+    let mut leaves = vec![false; bvh2.nodes.len()];
+    let mut weights = vec![0u32; bvh2.nodes.len()];
+    let mut costs = vec![0f32; bvh2.nodes.len()];
+    // (node, whether its children are done already).
     let mut pending = vec![(0, false)];
     while let Some((index, children_done)) = pending.pop() {
         let node = &bvh2.nodes[index];
         let first = node.first_index as usize;
+        let area = node.aabb().half_area();
         if node.is_leaf() {
-            counts[index] = node.prim_count;
+            let prims = &bvh2.primitive_indices[first..first + node.prim_count as usize];
+            weights[index] = prims.iter().fold(0u32, |w, &p| w.saturating_add(weight(p)));
+            costs[index] = area * LEAF_COST;
+            leaves[index] = true;
         } else if children_done {
-            counts[index] = counts[first] + counts[first + 1];
+            weights[index] = weights[first].saturating_add(weights[first + 1]);
+            let split = area + costs[first] + costs[first + 1];
+            let leaf = area * LEAF_COST;
+            leaves[index] = weights[index] <= max_leaf && leaf <= split;
+            costs[index] = if leaves[index] { leaf } else { split };
         } else {
             pending.extend([(index, true), (first, false), (first + 1, false)]);
         }
     }
-    counts
+    leaves
 }
 
 /// [`Tree::stack_need`] of `nodes`, whose children all have larger indices than their parents.
@@ -169,6 +194,7 @@ mod tests {
     use obvhs::ploc::PlocBuilder;
 
     use super::*;
+    use crate::accel::node::Child;
 
     /// obvhs' PLOC binary BVH over `boxes` (one primitive per leaf).
     fn binary(boxes: &[BvhAabb]) -> Bvh2 {
@@ -204,10 +230,32 @@ mod tests {
         out
     }
 
+    /// `bvh2` collapsed, with the primitives of each leaf (the leaf references are
+    /// `ChildRef::triangles` of indices into those).
+    fn collapsed(
+        bvh2: &Bvh2,
+        max_leaf: u32,
+        groupable: impl Fn(u32) -> bool,
+    ) -> (Tree, Vec<Vec<u32>>) {
+        let mut leaves = Vec::new();
+        let tree = collapse(bvh2, max_leaf, groupable, |prims| {
+            leaves.push(prims.to_vec());
+            ChildRef::triangles(leaves.len() - 1)
+        });
+        (tree, leaves)
+    }
+
     /// Walks `tree` from the root and checks its shape against `boxes`; returns the deepest
     /// stack a traversal can need, counted along every path.
-    fn check(tree: &Tree, boxes: &[BvhAabb], max_leaf: u32) -> usize {
+    fn check(
+        tree: &Tree,
+        leaves: &[Vec<u32>],
+        boxes: &[BvhAabb],
+        max_leaf: u32,
+        groupable: impl Fn(u32) -> bool,
+    ) -> usize {
         let mut seen_prims = vec![false; boxes.len()];
+        let mut seen_leaves = vec![false; leaves.len()];
         let mut seen_nodes = vec![false; tree.nodes.len()];
         let mut deepest = 0;
         // (node, stack entries left behind on the way to it).
@@ -226,34 +274,39 @@ mod tests {
             let stacked = stacked + used.len() - 1;
             deepest = deepest.max(stacked);
             for lane in used {
-                let child = node.children[lane];
                 let contains = |b: &BvhAabb| {
                     (0..3).all(|axis| {
                         node.planes[2 * axis][lane] <= b.min[axis]
                             && node.planes[2 * axis + 1][lane] >= b.max[axis]
                     })
                 };
-                match child.inner() {
-                    Some(inner) => {
+                match node.children[lane].get() {
+                    Child::Node(inner) => {
                         assert!(inner > index, "child {inner} before its parent {index}");
                         pending.push((inner, stacked));
                     }
-                    None => {
-                        let range = child.primitives();
-                        assert!(!range.is_empty() && range.len() <= max_leaf as usize);
-                        for position in range {
-                            let prim = tree.order[position] as usize;
+                    Child::Triangles(leaf) => {
+                        assert!(!seen_leaves[leaf], "leaf {leaf} reached twice");
+                        seen_leaves[leaf] = true;
+                        let prims = &leaves[leaf];
+                        assert!(!prims.is_empty() && prims.len() <= max_leaf as usize);
+                        if prims.iter().any(|&p| !groupable(p)) {
+                            assert_eq!(prims.len(), 1, "an ungroupable primitive shares a leaf");
+                        }
+                        for &prim in prims {
+                            let prim = prim as usize;
                             assert!(!seen_prims[prim], "primitive {prim} twice");
                             seen_prims[prim] = true;
                             assert!(contains(&boxes[prim]), "primitive {prim} outside its box");
                         }
                     }
+                    Child::Sphere(_) => panic!("the test makes no sphere leaves"),
                 }
             }
         }
         assert!(seen_prims.iter().all(|&s| s), "a primitive is missing");
+        assert!(seen_leaves.iter().all(|&s| s), "an unreachable leaf");
         assert!(seen_nodes.iter().all(|&s| s), "an unreachable node");
-        assert_eq!(tree.order.len(), boxes.len());
         deepest
     }
 
@@ -263,12 +316,16 @@ mod tests {
             let boxes = boxes(count, seed);
             let bvh2 = binary(&boxes);
             for max_leaf in [1, 2, 4] {
-                let tree = collapse(&bvh2, max_leaf);
-                let deepest = check(&tree, &boxes, max_leaf);
-                assert_eq!(
-                    tree.stack_need, deepest,
-                    "{count} boxes, leaves of {max_leaf}"
-                );
+                for every in [1, 3] {
+                    // Every third primitive (or none) may not share a leaf.
+                    let groupable = |p: u32| every == 1 || !p.is_multiple_of(every);
+                    let (tree, leaves) = collapsed(&bvh2, max_leaf, groupable);
+                    let deepest = check(&tree, &leaves, &boxes, max_leaf, groupable);
+                    assert_eq!(
+                        tree.stack_need, deepest,
+                        "{count} boxes, leaves of {max_leaf}"
+                    );
+                }
             }
         }
     }
@@ -276,7 +333,7 @@ mod tests {
     #[test]
     fn nodes_have_four_children_unless_all_are_leaves() {
         let boxes = boxes(5000, 7);
-        let tree = collapse(&binary(&boxes), 1);
+        let (tree, _) = collapsed(&binary(&boxes), 4, |_| true);
         for (index, node) in tree.nodes.iter().enumerate() {
             let used: Vec<ChildRef> = node
                 .children
@@ -292,9 +349,29 @@ mod tests {
     }
 
     #[test]
+    fn flat_walls_of_a_room_get_a_leaf_each() {
+        // Two triangles of the floor (y = -1) and two of the back wall (z = -1), each pair with
+        // the same flat box: one leaf per wall, not one for the whole room.
+        let floor = BvhAabb::new(Vec3A::new(-1.0, -1.0, -1.0), Vec3A::new(1.0, -1.0, 1.0));
+        let back = BvhAabb::new(Vec3A::new(-1.0, -1.0, -1.0), Vec3A::new(1.0, 1.0, -1.0));
+        let boxes = [floor, back, floor, back];
+        let (tree, leaves) = collapsed(&binary(&boxes), 4, |_| true);
+        let mut walls: Vec<Vec<u32>> = leaves
+            .into_iter()
+            .map(|mut prims| {
+                prims.sort_unstable();
+                prims
+            })
+            .collect();
+        walls.sort_unstable();
+        assert_eq!(walls, [vec![0, 2], vec![1, 3]]);
+        assert_eq!(tree.nodes.len(), 1);
+    }
+
+    #[test]
     fn nothing_in_nothing_out() {
-        let tree = collapse(&Bvh2::default(), 1);
-        assert!(tree.nodes.is_empty() && tree.order.is_empty());
+        let (tree, leaves) = collapsed(&Bvh2::default(), 1, |_| true);
+        assert!(tree.nodes.is_empty() && leaves.is_empty());
         assert_eq!(tree.stack_need, 0);
     }
 }

@@ -11,7 +11,7 @@ use glam::{Vec2, Vec3};
 
 use crate::{Aabb, Hit, Ray, Shape, Sphere};
 use node::Node4;
-use prim::{PrimGeom, PrimHit, PrimInfo, direction_of};
+use prim::{Found, Geometry, PrimInfo, direction_of};
 use query::RayQuery;
 use walk::{ArrayStack, FIXED_STACK, SMALL_STACK, StackKind};
 
@@ -26,10 +26,12 @@ pub struct Accel {
     shapes: Vec<Shape>,
     /// The hierarchy, root first (empty when there are no primitives).
     nodes: Vec<Node4>,
-    /// Primitive geometry in BVH order: leaves refer to runs of it.
-    geoms: Vec<PrimGeom>,
-    /// Ids and normals of the primitives, in the same order as `geoms`.
-    infos: Vec<PrimInfo>,
+    /// Triangle packets and spheres, which leaves refer to.
+    geometry: Geometry,
+    /// Ids and normals of the triangles: lane `l` of packet `p` at `4 p + l`.
+    triangle_infos: Vec<PrimInfo>,
+    /// Ids of the spheres, by sphere index.
+    sphere_infos: Vec<PrimInfo>,
     bounds: Aabb,
     /// The traversal stack the tree needs: small for small scenes, on the heap (allocated per
     /// query, sized to `stack_need`) for trees too deep for the fixed stack.
@@ -48,8 +50,9 @@ impl Accel {
         Accel {
             shapes,
             nodes: built.nodes,
-            geoms: built.geoms,
-            infos: built.infos,
+            geometry: built.geometry,
+            triangle_infos: built.triangle_infos,
+            sphere_infos: built.sphere_infos,
             bounds: built.bounds,
             stack: StackKind::for_need(built.stack_need),
             stack_need: built.stack_need,
@@ -68,58 +71,61 @@ impl Accel {
 
     /// The closest surface along `ray` with `0 < t < t_max`, if any.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        if self.geoms.is_empty() || t_max.is_nan() || t_max <= 0.0 {
+        if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return None;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
-        let (nodes, geoms) = (&self.nodes[..], &self.geoms[..]);
+        let (nodes, geometry) = (&self.nodes[..], &self.geometry);
         let found = match self.stack {
             StackKind::Small => {
                 let mut stack = ArrayStack::<_, SMALL_STACK>::new();
-                walk::closest(nodes, geoms, &mut stack, &query, t_max)
+                walk::closest(nodes, geometry, &mut stack, &query, t_max)
             }
             StackKind::Fixed => {
                 let mut stack = ArrayStack::<_, FIXED_STACK>::new();
-                walk::closest(nodes, geoms, &mut stack, &query, t_max)
+                walk::closest(nodes, geometry, &mut stack, &query, t_max)
             }
             StackKind::Heap => {
                 let mut stack = Vec::with_capacity(self.stack_need);
-                walk::closest(nodes, geoms, &mut stack, &query, t_max)
+                walk::closest(nodes, geometry, &mut stack, &query, t_max)
             }
         };
-        found.map(|(id, hit)| self.surface_hit(ray, id, hit))
+        found.map(|found| self.surface_hit(ray, found))
     }
 
     /// True when some surface lies along `ray` with `0 < t < t_max`.
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        if self.geoms.is_empty() || t_max.is_nan() || t_max <= 0.0 {
+        if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return false;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
-        let (nodes, geoms) = (&self.nodes[..], &self.geoms[..]);
+        let (nodes, geometry) = (&self.nodes[..], &self.geometry);
         match self.stack {
             StackKind::Small => {
                 let mut stack = ArrayStack::<_, SMALL_STACK>::new();
-                walk::any(nodes, geoms, &mut stack, &query, t_max)
+                walk::any(nodes, geometry, &mut stack, &query, t_max)
             }
             StackKind::Fixed => {
                 let mut stack = ArrayStack::<_, FIXED_STACK>::new();
-                walk::any(nodes, geoms, &mut stack, &query, t_max)
+                walk::any(nodes, geometry, &mut stack, &query, t_max)
             }
             StackKind::Heap => {
                 let mut stack = Vec::with_capacity(self.stack_need);
-                walk::any(nodes, geoms, &mut stack, &query, t_max)
+                walk::any(nodes, geometry, &mut stack, &query, t_max)
             }
         }
     }
 
-    /// Completes the hit of `ray` with primitive `id` (index into `geoms`).
-    fn surface_hit(&self, ray: &Ray, id: usize, hit: PrimHit) -> Hit {
-        let info = self.infos[id];
-        match (&self.shapes[info.shape as usize], &self.geoms[id], hit) {
-            (Shape::Mesh(mesh), PrimGeom::Triangle(coords), PrimHit::Triangle(tri)) => {
-                let b = tri.bary;
-                let p = coords.point(b);
+    /// Completes the hit of `ray` that traversal found.
+    fn surface_hit(&self, ray: &Ray, found: Found) -> Hit {
+        match found {
+            Found::Triangle { packet, lane, hit } => {
+                let info = self.triangle_infos[4 * packet + lane];
+                let Shape::Mesh(mesh) = &self.shapes[info.shape as usize] else {
+                    unreachable!("triangle {packet}:{lane} of a shape that is not a mesh")
+                };
+                let b = hit.bary;
+                let p = self.geometry.packets[packet].triangle(lane).point(b);
                 let [i0, i1, i2] = mesh.indices[info.prim as usize].map(|i| i as usize);
                 let ns = mesh
                     .normals
@@ -130,7 +136,7 @@ impl Accel {
                     uv[i0] * b.x + uv[i1] * b.y + uv[i2] * b.z
                 });
                 Hit {
-                    t: tri.t,
+                    t: hit.t,
                     p,
                     ng: info.ng,
                     ns,
@@ -139,7 +145,12 @@ impl Accel {
                     prim: info.prim,
                 }
             }
-            (Shape::Sphere(sphere), PrimGeom::Sphere(geom), PrimHit::Sphere(t)) => {
+            Found::Sphere { index, t } => {
+                let info = self.sphere_infos[index];
+                let Shape::Sphere(sphere) = &self.shapes[info.shape as usize] else {
+                    unreachable!("sphere {index} of a shape that is not a sphere")
+                };
+                let geom = &self.geometry.spheres[index];
                 // The computed point only lands on the centre when the radius is below the float
                 // spacing at that position; the normal then faces the ray.
                 let outward = direction_of(ray.at(t) - sphere.center).unwrap_or(-ray.dir);
@@ -159,7 +170,6 @@ impl Accel {
                     prim: 0,
                 }
             }
-            _ => unreachable!("primitive {id} disagrees with its shape"),
         }
     }
 }

@@ -10,50 +10,73 @@ use glam::Vec4;
 
 use super::query::BoxRay;
 
-/// A reference to a child: an inner node's index, or a leaf's run of primitives.
+/// A reference to a child: an inner node, a packet of up to four triangles, or one sphere.
 ///
-/// Leaves have [`ChildRef::LEAF`] set, the index of their first primitive (in BVH order) in the
-/// bits above [`ChildRef::COUNT_BITS`] and their primitive count below.
+/// Bit 31 marks leaves and bit 30 spheres among them; the bits below hold the index of the node,
+/// packet or sphere.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct ChildRef(pub u32);
+pub(crate) struct ChildRef(u32);
+
+/// What a [`ChildRef`] refers to, by index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Child {
+    Node(usize),
+    Triangles(usize),
+    Sphere(usize),
+}
 
 impl ChildRef {
     const LEAF: u32 = 1 << 31;
-    const COUNT_BITS: u32 = 4;
-    /// The most primitives a leaf can hold.
-    pub const MAX_LEAF: u32 = (1 << Self::COUNT_BITS) - 1;
-    /// The most primitives a hierarchy can hold (the first primitive of a leaf must fit).
-    pub const MAX_PRIMITIVES: usize = (Self::LEAF >> Self::COUNT_BITS) as usize;
-    /// A leaf with no primitives: the child of an unused slot.
-    pub const EMPTY: ChildRef = ChildRef(Self::LEAF);
+    const SPHERE: u32 = 1 << 30;
+    /// One more than the largest index of any kind.
+    pub const MAX_INDEX: usize = Self::SPHERE as usize;
+    /// The child of an unused slot, whose box no ray hits: it is never followed (and would
+    /// refer to a sphere index no scene reaches).
+    pub const EMPTY: ChildRef = ChildRef(u32::MAX);
 
     /// The inner node `index`.
     pub fn node(index: usize) -> Self {
-        let index = u32::try_from(index).expect("fewer than 2^31 nodes");
-        assert!(index < Self::LEAF, "fewer than 2^31 nodes");
-        ChildRef(index)
+        Self::new(0, index)
     }
 
-    /// The leaf of the `count` primitives from `first` on (BVH order).
-    pub fn leaf(first: usize, count: u32) -> Self {
+    /// The triangle packet `index`.
+    pub fn triangles(index: usize) -> Self {
+        Self::new(Self::LEAF, index)
+    }
+
+    /// The sphere `index`.
+    pub fn sphere(index: usize) -> Self {
+        Self::new(Self::LEAF | Self::SPHERE, index)
+    }
+
+    fn new(kind: u32, index: usize) -> Self {
         assert!(
-            first + count as usize <= Self::MAX_PRIMITIVES && count <= Self::MAX_LEAF,
-            "leaf of {count} primitives at {first} does not fit"
+            index < Self::MAX_INDEX,
+            "index {index} does not fit a child reference"
         );
-        ChildRef(Self::LEAF | (first as u32) << Self::COUNT_BITS | count)
+        ChildRef(kind | index as u32)
     }
 
-    /// The inner node's index, or `None` for a leaf.
+    /// What this refers to.
+    #[inline(always)]
+    pub fn get(self) -> Child {
+        let index = (self.0 & (Self::SPHERE - 1)) as usize;
+        if self.0 & Self::LEAF == 0 {
+            Child::Node(index)
+        } else if self.0 & Self::SPHERE == 0 {
+            Child::Triangles(index)
+        } else {
+            Child::Sphere(index)
+        }
+    }
+
+    /// The inner node's index, if this refers to one.
     #[inline(always)]
     pub fn inner(self) -> Option<usize> {
-        (self.0 & Self::LEAF == 0).then_some(self.0 as usize)
-    }
-
-    /// The range of primitives (BVH order) of a leaf.
-    #[inline(always)]
-    pub fn primitives(self) -> std::ops::Range<usize> {
-        let first = ((self.0 & !Self::LEAF) >> Self::COUNT_BITS) as usize;
-        first..first + (self.0 & Self::MAX_LEAF) as usize
+        match self.get() {
+            Child::Node(index) => Some(index),
+            _ => None,
+        }
     }
 }
 
@@ -174,16 +197,15 @@ mod tests {
 
     #[test]
     fn child_refs_round_trip() {
-        let leaf = ChildRef::leaf(12345, 3);
-        assert_eq!(leaf.inner(), None);
-        assert_eq!(leaf.primitives(), 12345..12348);
-        assert_eq!(ChildRef::node(77).inner(), Some(77));
-        assert_eq!(ChildRef::EMPTY.primitives(), 0..0);
-        let last = ChildRef::leaf(ChildRef::MAX_PRIMITIVES - 1, 1);
-        assert_eq!(
-            last.primitives(),
-            ChildRef::MAX_PRIMITIVES - 1..ChildRef::MAX_PRIMITIVES
-        );
+        let last = ChildRef::MAX_INDEX - 1;
+        for index in [0, 1, 12345, last] {
+            assert_eq!(ChildRef::node(index).get(), Child::Node(index));
+            assert_eq!(ChildRef::triangles(index).get(), Child::Triangles(index));
+            assert_eq!(ChildRef::sphere(index).get(), Child::Sphere(index));
+            assert_eq!(ChildRef::node(index).inner(), Some(index));
+            assert_eq!(ChildRef::sphere(index).inner(), None);
+        }
+        assert_eq!(ChildRef::EMPTY.get(), Child::Sphere(last));
     }
 
     #[test]

@@ -4,9 +4,11 @@
 use glam::Vec3;
 
 use super::Accel;
-use super::prim::{PrimGeom, PrimHit};
+use super::prim::PrimInfo;
 use super::query::RayQuery;
 use super::walk::StackKind;
+use crate::sphere::SphereGeom;
+use crate::triangle::TriangleCoords;
 use crate::{Ray, Shape, Sphere, TriangleMesh};
 
 /// xorshift64*, enough for reproducible inputs here.
@@ -47,14 +49,56 @@ fn random_scene(rng: &mut Rng, triangles: usize, spheres: usize) -> Vec<Shape> {
     shapes
 }
 
-/// Closest hit over every primitive, `(BVH-order id, hit)`.
-fn brute_force(accel: &Accel, ray: &Ray, t_max: f32) -> Option<(usize, PrimHit)> {
-    let query = RayQuery::new(ray.origin.into(), ray.dir.into());
-    let mut best: Option<(usize, PrimHit)> = None;
-    for (id, geom) in accel.geoms.iter().enumerate() {
-        let limit = best.map_or(t_max, |(_, h)| h.t());
-        if let Some(hit) = geom.intersect(&query, limit) {
-            best = Some((id, hit));
+/// One primitive of the hierarchy, tested alone.
+#[derive(Clone, Copy, Debug)]
+enum Prim {
+    Triangle(TriangleCoords),
+    Sphere(SphereGeom),
+}
+
+impl Prim {
+    /// The single-primitive test (for triangles, the one the packet test must match bit for bit).
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        match self {
+            Prim::Triangle(tri) => query.shear.intersect(tri, t_max).map(|h| h.t),
+            Prim::Sphere(s) => s.intersect(query.origin, query.dir, t_max),
+        }
+    }
+}
+
+/// Every primitive of `accel` with its ids, triangles in packet order, then spheres.
+fn primitives(accel: &Accel) -> Vec<(PrimInfo, Prim)> {
+    let triangles = accel
+        .geometry
+        .packets
+        .iter()
+        .enumerate()
+        .flat_map(|(p, packet)| {
+            (0..4).map(move |lane| {
+                (
+                    accel.triangle_infos[4 * p + lane],
+                    Prim::Triangle(packet.triangle(lane)),
+                )
+            })
+        });
+    let spheres = accel
+        .sphere_infos
+        .iter()
+        .zip(&accel.geometry.spheres)
+        .map(|(&info, &s)| (info, Prim::Sphere(s)));
+    triangles
+        .chain(spheres)
+        .filter(|(info, _)| *info != PrimInfo::UNUSED)
+        .collect()
+}
+
+/// Closest hit over every primitive: its distance.
+fn brute_force(prims: &[(PrimInfo, Prim)], ray: &Ray, t_max: f32) -> Option<f32> {
+    let mut best = None;
+    for (_, prim) in prims {
+        if let Some(t) = prim.intersect(ray, best.unwrap_or(t_max)) {
+            best = Some(t);
         }
     }
     best
@@ -84,24 +128,21 @@ fn check_against_brute_force(accel: &Accel, rng: &mut Rng, count: usize, scene: 
 /// Checks closest hits and occlusion of `rays` (with their `t_max`) against brute force;
 /// returns how many hit something.
 fn check_rays(accel: &Accel, rays: impl IntoIterator<Item = (Ray, f32)>, scene: &str) -> usize {
+    let prims = primitives(accel);
     let mut hits = 0;
     for (i, (ray, t_max)) in rays.into_iter().enumerate() {
-        let expected = brute_force(accel, &ray, t_max);
+        let expected = brute_force(&prims, &ray, t_max);
         let replay = format!("{scene}, ray {i}: {ray:?}, t_max {t_max}");
         match (expected, accel.intersect(&ray, t_max)) {
             (None, None) => {}
-            (Some((_, hit)), Some(got)) => {
-                assert_eq!(got.t.to_bits(), hit.t().to_bits(), "{replay}");
+            (Some(t), Some(got)) => {
+                assert_eq!(got.t.to_bits(), t.to_bits(), "{replay}");
                 // Coincident primitives tie; the reported one must itself be hit at that t.
-                let query = RayQuery::new(ray.origin.into(), ray.dir.into());
-                let reported = accel
-                    .infos
+                let (_, reported) = prims
                     .iter()
-                    .position(|info| (info.shape, info.prim) == (got.shape, got.prim))
+                    .find(|(info, _)| (info.shape, info.prim) == (got.shape, got.prim))
                     .expect("the reported primitive exists");
-                let own = accel.geoms[reported]
-                    .intersect(&query, t_max)
-                    .map(|h| h.t().to_bits());
+                let own = reported.intersect(&ray, t_max).map(f32::to_bits);
                 assert_eq!(own, Some(got.t.to_bits()), "{replay}");
                 hits += 1;
             }
@@ -210,14 +251,18 @@ fn deep_trees_use_the_heap_stack() {
 fn primitive_order_is_a_permutation() {
     let mut rng = Rng(3);
     let accel = Accel::new(random_scene(&mut rng, 500, 20));
-    let mut seen: Vec<(u32, u32)> = accel.infos.iter().map(|i| (i.shape, i.prim)).collect();
+    let mut seen: Vec<(u32, u32)> = primitives(&accel)
+        .iter()
+        .map(|(i, _)| (i.shape, i.prim))
+        .collect();
     seen.sort_unstable();
     let expected: Vec<(u32, u32)> = (0..500)
         .map(|p| (0, p))
         .chain((1..21).map(|s| (s, 0)))
         .collect();
     assert_eq!(seen, expected);
-    assert_eq!(accel.geoms.len(), accel.infos.len());
+    assert_eq!(accel.triangle_infos.len(), 4 * accel.geometry.packets.len());
+    assert_eq!(accel.sphere_infos.len(), accel.geometry.spheres.len());
 }
 
 /// Axis-aligned unit squares (two triangles each) on the planes `x, y, z = k / 4`, several of
@@ -259,11 +304,10 @@ fn grid_scene(rng: &mut Rng) -> Vec<Shape> {
 
 /// A point of every primitive of `accel` (a random point of a triangle, a pole of a sphere).
 fn surface_points(accel: &Accel, rng: &mut Rng) -> Vec<Vec3> {
-    accel
-        .geoms
+    primitives(accel)
         .iter()
-        .map(|geom| match geom {
-            PrimGeom::Triangle(tri) => {
+        .map(|(_, prim)| match prim {
+            Prim::Triangle(tri) => {
                 let (u, v) = (rng.f32(), rng.f32());
                 let (u, v) = if u + v > 1.0 {
                     (1.0 - u, 1.0 - v)
@@ -272,7 +316,7 @@ fn surface_points(accel: &Accel, rng: &mut Rng) -> Vec<Vec3> {
                 };
                 tri.point(Vec3::new(1.0 - u - v, u, v))
             }
-            PrimGeom::Sphere(s) => Vec3::from(s.center) + Vec3::Z * s.radius,
+            Prim::Sphere(s) => Vec3::from(s.center) + Vec3::Z * s.radius,
         })
         .collect()
 }

@@ -3,8 +3,8 @@
 
 use glam::Vec4;
 
-use super::node::{ChildRef, Node4};
-use super::prim::{PrimGeom, PrimHit};
+use super::node::{Child, ChildRef, Node4};
+use super::prim::{Found, Geometry};
 use super::query::RayQuery;
 
 /// Capacity of the stack for shallow trees (small scenes), where clearing a larger stack for
@@ -103,31 +103,40 @@ impl Default for Pending {
     }
 }
 
-/// The closest primitive hit with `0 < t < t_max`: its index (BVH order) and the hit.
+/// The closest primitive hit with `0 < t < t_max`.
 #[inline(always)]
 pub(crate) fn closest(
     nodes: &[Node4],
-    geoms: &[PrimGeom],
+    geometry: &Geometry,
     stack: &mut impl Stack<Pending>,
     query: &RayQuery,
     t_max: f32,
-) -> Option<(usize, PrimHit)> {
+) -> Option<Found> {
     let mut closest = t_max;
     let mut found = None;
     let mut current = ChildRef::node(0);
     loop {
-        if let Some(index) = current.inner() {
-            let node = &nodes[index];
-            let (mask, t_enter) = node.hit(&query.boxes, closest);
-            if mask != 0 {
-                current = nearest_first(node, mask, t_enter, stack);
-                continue;
+        match current.get() {
+            Child::Node(index) => {
+                let node = &nodes[index];
+                let (mask, t_enter) = node.hit(&query.boxes, closest);
+                if mask != 0 {
+                    current = nearest_first(node, mask, t_enter, stack);
+                    continue;
+                }
             }
-        } else {
-            for id in current.primitives() {
-                if let Some(hit) = geoms[id].intersect(query, closest) {
-                    closest = hit.t();
-                    found = Some((id, hit));
+            Child::Triangles(packet) => {
+                let packet4 = &geometry.packets[packet];
+                if let Some((lane, hit)) = query.shear.nearest4(packet4, closest) {
+                    closest = hit.t;
+                    found = Some(Found::Triangle { packet, lane, hit });
+                }
+            }
+            Child::Sphere(index) => {
+                let sphere = &geometry.spheres[index];
+                if let Some(t) = sphere.intersect(query.origin, query.dir, closest) {
+                    closest = t;
+                    found = Some(Found::Sphere { index, t });
                 }
             }
         }
@@ -150,6 +159,8 @@ fn nearest_first(
     t_enter: Vec4,
     stack: &mut impl Stack<Pending>,
 ) -> ChildRef {
+    // Through an array: indexing a vector by a variable lane compiles to a jump table.
+    let t_enter = t_enter.to_array();
     let entry = |lane: u32| Pending {
         child: node.children[lane as usize],
         t_enter: t_enter[lane as usize],
@@ -196,30 +207,38 @@ fn nearest_first(
 #[inline(always)]
 pub(crate) fn any(
     nodes: &[Node4],
-    geoms: &[PrimGeom],
+    geometry: &Geometry,
     stack: &mut impl Stack<ChildRef>,
     query: &RayQuery,
     t_max: f32,
 ) -> bool {
     let mut current = ChildRef::node(0);
     loop {
-        if let Some(index) = current.inner() {
-            let node = &nodes[index];
-            let (mut mask, _) = node.hit(&query.boxes, t_max);
-            if mask != 0 {
-                current = node.children[mask.trailing_zeros() as usize];
-                mask &= mask - 1;
-                while mask != 0 {
-                    stack.push(node.children[mask.trailing_zeros() as usize]);
+        match current.get() {
+            Child::Node(index) => {
+                let node = &nodes[index];
+                let (mut mask, _) = node.hit(&query.boxes, t_max);
+                if mask != 0 {
+                    current = node.children[mask.trailing_zeros() as usize];
                     mask &= mask - 1;
+                    while mask != 0 {
+                        stack.push(node.children[mask.trailing_zeros() as usize]);
+                        mask &= mask - 1;
+                    }
+                    continue;
                 }
-                continue;
             }
-        } else if current
-            .primitives()
-            .any(|id| geoms[id].intersect(query, t_max).is_some())
-        {
-            return true;
+            Child::Triangles(packet) => {
+                if query.shear.any4(&geometry.packets[packet], t_max) {
+                    return true;
+                }
+            }
+            Child::Sphere(index) => {
+                let sphere = &geometry.spheres[index];
+                if sphere.intersect(query.origin, query.dir, t_max).is_some() {
+                    return true;
+                }
+            }
         }
         match stack.pop() {
             Some(child) => current = child,
