@@ -56,7 +56,8 @@ impl TriangleCoords {
     }
 
     /// The point with barycentric coordinates `b` (weights of `p0`, `p1`, `p2`), summed in
-    /// vertex order.
+    /// vertex order (what [`crate::triangle4::Triangle4::point`] must match).
+    #[cfg(test)]
     pub fn point(&self, b: Vec3) -> Vec3 {
         let along = |c: Vec3A| c.x * b.x + c.y * b.y + c.z * b.z;
         Vec3::from(self.coords.map(along))

@@ -35,6 +35,16 @@ impl Triangle4 {
         Self { vertices }
     }
 
+    /// The point with barycentric coordinates `b` (weights of `p0`, `p1`, `p2`) of the triangle in
+    /// `lane`: the same sums as [`TriangleCoords::point`], computed for all lanes at once (which
+    /// avoids gathering one lane's coordinates through memory).
+    #[inline(always)]
+    pub fn point(&self, lane: usize, b: Vec3) -> Vec3 {
+        let [p0, p1, p2] = &self.vertices;
+        let along = |c: usize| (p0[c] * b.x + p1[c] * b.y + p2[c] * b.z).to_array()[lane];
+        Vec3::new(along(0), along(1), along(2))
+    }
+
     /// The triangle in `lane` (NaN coordinates for an unused lane).
     pub fn triangle(&self, lane: usize) -> TriangleCoords {
         // Through arrays: indexing a vector by a variable lane compiles to a jump table.
@@ -84,7 +94,7 @@ impl RayShear {
     /// The hit of the ray with each triangle of `tri` (either side) with `0 < t < t_max`, by
     /// lane; bit for bit what [`RayShear::intersect`] gives for each of them.
     pub fn intersect4(&self, tri: &Triangle4, t_max: f32) -> [Option<TriangleHit>; 4] {
-        let lanes = self.lanes(tri, t_max);
+        let lanes = self.lanes(tri, 0b1111, t_max);
         std::array::from_fn(|lane| {
             if lanes.hit & (1 << lane) != 0 {
                 Some(lanes.hit_in(lane))
@@ -96,11 +106,11 @@ impl RayShear {
         })
     }
 
-    /// The nearest hit with a triangle of `tri` with `0 < t < t_max` and its lane (the first lane
-    /// of equally near ones).
+    /// The nearest hit with a triangle of `tri` in the lanes `used` (a bitmask) with
+    /// `0 < t < t_max` and its lane (the first lane of equally near ones).
     #[inline(always)]
-    pub fn nearest4(&self, tri: &Triangle4, t_max: f32) -> Option<(usize, TriangleHit)> {
-        let lanes = self.lanes(tri, t_max);
+    pub fn nearest4(&self, tri: &Triangle4, used: u32, t_max: f32) -> Option<(usize, TriangleHit)> {
+        let lanes = self.lanes(tri, used, t_max);
         if lanes.redo != 0 {
             return nearest4_redone(self.origin_point(), self.dir(), tri, t_max);
         }
@@ -120,10 +130,11 @@ impl RayShear {
         Some((nearest, lanes.hit_in(nearest)))
     }
 
-    /// Whether the ray hits any triangle of `tri` with `0 < t < t_max`.
+    /// Whether the ray hits any triangle of `tri` in the lanes `used` (a bitmask) with
+    /// `0 < t < t_max`.
     #[inline(always)]
-    pub fn any4(&self, tri: &Triangle4, t_max: f32) -> bool {
-        let lanes = self.lanes(tri, t_max);
+    pub fn any4(&self, tri: &Triangle4, used: u32, t_max: f32) -> bool {
+        let lanes = self.lanes(tri, used, t_max);
         lanes.hit != 0
             || (0..4).any(|lane| {
                 lanes.redo & (1 << lane) != 0
@@ -131,9 +142,10 @@ impl RayShear {
             })
     }
 
-    /// Every step of [`RayShear::intersect`] up to its double-precision cases, on four lanes.
+    /// Every step of [`RayShear::intersect`] up to its double-precision cases, on the lanes
+    /// `used` (a bitmask; the others count as misses).
     #[inline(always)]
-    fn lanes(&self, tri: &Triangle4, t_max: f32) -> Lanes {
+    fn lanes(&self, tri: &Triangle4, used: u32, t_max: f32) -> Lanes {
         let [kx, ky, kz] = self.axes;
         let [sx, sy, sz] = self.shear;
         let o = &self.origin;
@@ -148,12 +160,14 @@ impl RayShear {
         let v = xa * yc - ya * xc;
         let w = xb * ya - yb * xa;
         let zero = Vec4::ZERO;
-        let any_zero = u.cmpeq(zero) | v.cmpeq(zero) | w.cmpeq(zero);
-        // No edge function of either sign, which is false in unused (NaN) lanes.
-        let same_side = (u.cmpge(zero) & v.cmpge(zero) & w.cmpge(zero))
-            | (u.cmple(zero) & v.cmple(zero) & w.cmple(zero));
+        // Lanes with an edge function exactly 0 go to the single-triangle test, which
+        // recomputes it in double precision. In the others the edge functions have one sign
+        // unless their sign bits differ.
+        let any_zero = (u.cmpeq(zero) | v.cmpeq(zero) | w.cmpeq(zero)).bitmask() & used;
+        let [su, sv, sw] = [u, v, w].map(Vec4::is_negative_bitmask);
+        let same_side = used & !any_zero & !((su ^ sv) | (su ^ sw));
         // Most packets a ray reaches it misses: stop as soon as that is certain.
-        if (same_side | any_zero).bitmask() == 0 {
+        if same_side | any_zero == 0 {
             return Lanes::NONE;
         }
         let det = u + v + w;
@@ -165,8 +179,8 @@ impl RayShear {
             | (!front & t_scaled.cmplt(zero) & t_scaled.cmpgt(t_max_det));
         let inv_det = det.recip();
         let t = t_scaled * inv_det;
-        let passed = same_side & det.cmpne(zero) & inside & !t.cmpge(t_max4);
-        if (passed | any_zero).bitmask() == 0 {
+        let passed = same_side & (det.cmpne(zero) & inside & !t.cmpge(t_max4)).bitmask();
+        if passed | any_zero == 0 {
             return Lanes::NONE;
         }
         let max = |a: Vec4, b: Vec4, c: Vec4| a.abs().max(b.abs()).max(c.abs());
@@ -175,13 +189,13 @@ impl RayShear {
             max(u, v, w),
             inv_det.abs(),
         );
-        let clear = t.cmpgt(bound);
+        let clear = t.cmpgt(bound).bitmask();
         Lanes {
             t,
             edges: [u, v, w],
             inv_det,
-            hit: (!any_zero & passed & clear).bitmask(),
-            redo: (any_zero | (passed & !clear)).bitmask(),
+            hit: passed & clear,
+            redo: any_zero | (passed & !clear),
         }
     }
 }
@@ -301,11 +315,11 @@ mod tests {
                 hits += usize::from(expected.is_some());
             }
             assert_eq!(
-                shear.any4(&packet, t_max),
+                shear.any4(&packet, (1 << count) - 1, t_max),
                 got.iter().any(Option::is_some),
                 "seed {seed:#x}, case {case}"
             );
-            let lanes = shear.lanes(&packet, t_max);
+            let lanes = shear.lanes(&packet, (1 << count) - 1, t_max);
             redone += lanes.redo.count_ones() as usize;
             assert_eq!(
                 lanes.redo & !((1 << count) - 1),
@@ -315,6 +329,22 @@ mod tests {
         }
         assert!(hits > 20_000, "only {hits} hits");
         assert!(redone > 1_000, "only {redone} lanes redone");
+    }
+
+    #[test]
+    fn points_match_the_single_triangle_points() {
+        let mut rng = Rng(0x5eed_0021);
+        for _ in 0..1000 {
+            let tris: Vec<TriangleCoords> = (0..4)
+                .map(|_| TriangleCoords::new([rng.vec(), rng.vec(), rng.vec()].map(|v| v * 100.0)))
+                .collect();
+            let packet = Triangle4::new(tris.iter().copied());
+            let b = Vec3::new(rng.f32(), rng.f32(), rng.f32());
+            for (lane, tri) in tris.iter().enumerate() {
+                let bits = |p: Vec3| p.to_array().map(f32::to_bits);
+                assert_eq!(bits(packet.point(lane, b)), bits(tri.point(b)));
+            }
+        }
     }
 
     #[test]
@@ -329,15 +359,17 @@ mod tests {
         closer.coords[2] = Vec3A::splat(-1.0);
         let packet = Triangle4::new([tri, closer, closer]);
         let shear = RayShear::new(Vec3A::ZERO, Vec3A::NEG_Z);
-        let (lane, hit) = shear.nearest4(&packet, f32::INFINITY).expect("a hit");
+        let (lane, hit) = shear
+            .nearest4(&packet, 0b111, f32::INFINITY)
+            .expect("a hit");
         assert_eq!((lane, hit.t), (1, 1.0));
         let packet = Triangle4::new([tri, tri]);
         assert_eq!(
             shear
-                .nearest4(&packet, f32::INFINITY)
+                .nearest4(&packet, 0b11, f32::INFINITY)
                 .map(|(l, h)| (l, h.t)),
             Some((0, 2.0))
         );
-        assert_eq!(shear.nearest4(&packet, 2.0).map(|(l, _)| l), None);
+        assert_eq!(shear.nearest4(&packet, 0b11, 2.0).map(|(l, _)| l), None);
     }
 }

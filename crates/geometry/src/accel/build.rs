@@ -133,7 +133,7 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
             built
                 .triangle_infos
                 .resize(4 * built.geometry.packets.len(), PrimInfo::UNUSED);
-            ChildRef::triangles(built.geometry.packets.len() - 1)
+            ChildRef::triangles(built.geometry.packets.len() - 1, prims.len())
         },
     );
     built.nodes = tree.nodes;

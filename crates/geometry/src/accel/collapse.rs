@@ -240,7 +240,7 @@ mod tests {
         let mut leaves = Vec::new();
         let tree = collapse(bvh2, max_leaf, groupable, |prims| {
             leaves.push(prims.to_vec());
-            ChildRef::triangles(leaves.len() - 1)
+            ChildRef::triangles(leaves.len() - 1, prims.len().min(4))
         });
         (tree, leaves)
     }
@@ -285,7 +285,7 @@ mod tests {
                         assert!(inner > index, "child {inner} before its parent {index}");
                         pending.push((inner, stacked));
                     }
-                    Child::Triangles(leaf) => {
+                    Child::Triangles { packet: leaf, .. } => {
                         assert!(!seen_leaves[leaf], "leaf {leaf} reached twice");
                         seen_leaves[leaf] = true;
                         let prims = &leaves[leaf];

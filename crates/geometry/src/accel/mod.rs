@@ -125,7 +125,7 @@ impl Accel {
                     unreachable!("triangle {packet}:{lane} of a shape that is not a mesh")
                 };
                 let b = hit.bary;
-                let p = self.geometry.packets[packet].triangle(lane).point(b);
+                let p = self.geometry.packets[packet].point(lane, b);
                 let [i0, i1, i2] = mesh.indices[info.prim as usize].map(|i| i as usize);
                 let ns = mesh
                     .normals

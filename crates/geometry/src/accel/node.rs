@@ -10,10 +10,10 @@ use glam::Vec4;
 
 use super::query::BoxRay;
 
-/// A reference to a child: an inner node, a packet of up to four triangles, or one sphere.
+/// A reference to a child: an inner node, a packet of one to four triangles, or one sphere.
 ///
-/// Bit 31 marks leaves and bit 30 spheres among them; the bits below hold the index of the node,
-/// packet or sphere.
+/// Bit 31 marks leaves and bit 30 spheres among them; bits 28 and 29 hold a triangle packet's
+/// number of triangles less one, and the bits below the index of the node, packet or sphere.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct ChildRef(u32);
 
@@ -21,15 +21,20 @@ pub(crate) struct ChildRef(u32);
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Child {
     Node(usize),
-    Triangles(usize),
+    /// A packet and the bitmask of its lanes in use (bit `i` for lane `i`).
+    Triangles {
+        packet: usize,
+        lanes: u32,
+    },
     Sphere(usize),
 }
 
 impl ChildRef {
     const LEAF: u32 = 1 << 31;
     const SPHERE: u32 = 1 << 30;
+    const COUNT_SHIFT: u32 = 28;
     /// One more than the largest index of any kind.
-    pub const MAX_INDEX: usize = Self::SPHERE as usize;
+    pub const MAX_INDEX: usize = 1 << Self::COUNT_SHIFT;
     /// The child of an unused slot, whose box no ray hits: it is never followed (and would
     /// refer to a sphere index no scene reaches).
     pub const EMPTY: ChildRef = ChildRef(u32::MAX);
@@ -39,9 +44,13 @@ impl ChildRef {
         Self::new(0, index)
     }
 
-    /// The triangle packet `index`.
-    pub fn triangles(index: usize) -> Self {
-        Self::new(Self::LEAF, index)
+    /// The first `count` (one to four) lanes of triangle packet `index`.
+    pub fn triangles(index: usize, count: usize) -> Self {
+        assert!((1..=4).contains(&count), "a packet of {count} triangles");
+        Self::new(
+            Self::LEAF | ((count as u32 - 1) << Self::COUNT_SHIFT),
+            index,
+        )
     }
 
     /// The sphere `index`.
@@ -60,13 +69,16 @@ impl ChildRef {
     /// What this refers to.
     #[inline(always)]
     pub fn get(self) -> Child {
-        let index = (self.0 & (Self::SPHERE - 1)) as usize;
         if self.0 & Self::LEAF == 0 {
-            Child::Node(index)
+            Child::Node(self.0 as usize)
         } else if self.0 & Self::SPHERE == 0 {
-            Child::Triangles(index)
+            let count_less_one = (self.0 >> Self::COUNT_SHIFT) & 3;
+            Child::Triangles {
+                packet: (self.0 & (Self::MAX_INDEX as u32 - 1)) as usize,
+                lanes: (2 << count_less_one) - 1,
+            }
         } else {
-            Child::Sphere(index)
+            Child::Sphere((self.0 & (Self::MAX_INDEX as u32 - 1)) as usize)
         }
     }
 
@@ -200,7 +212,16 @@ mod tests {
         let last = ChildRef::MAX_INDEX - 1;
         for index in [0, 1, 12345, last] {
             assert_eq!(ChildRef::node(index).get(), Child::Node(index));
-            assert_eq!(ChildRef::triangles(index).get(), Child::Triangles(index));
+            for (count, lanes) in [(1, 0b1), (2, 0b11), (3, 0b111), (4, 0b1111)] {
+                let packet = ChildRef::triangles(index, count).get();
+                assert_eq!(
+                    packet,
+                    Child::Triangles {
+                        packet: index,
+                        lanes
+                    }
+                );
+            }
             assert_eq!(ChildRef::sphere(index).get(), Child::Sphere(index));
             assert_eq!(ChildRef::node(index).inner(), Some(index));
             assert_eq!(ChildRef::sphere(index).inner(), None);

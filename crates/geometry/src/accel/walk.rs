@@ -125,9 +125,9 @@ pub(crate) fn closest(
                     continue;
                 }
             }
-            Child::Triangles(packet) => {
+            Child::Triangles { packet, lanes } => {
                 let packet4 = &geometry.packets[packet];
-                if let Some((lane, hit)) = query.shear.nearest4(packet4, closest) {
+                if let Some((lane, hit)) = query.shear.nearest4(packet4, lanes, closest) {
                     closest = hit.t;
                     found = Some(Found::Triangle { packet, lane, hit });
                 }
@@ -228,8 +228,8 @@ pub(crate) fn any(
                     continue;
                 }
             }
-            Child::Triangles(packet) => {
-                if query.shear.any4(&geometry.packets[packet], t_max) {
+            Child::Triangles { packet, lanes } => {
+                if query.shear.any4(&geometry.packets[packet], lanes, t_max) {
                     return true;
                 }
             }
