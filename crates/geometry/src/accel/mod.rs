@@ -5,6 +5,7 @@ mod collapse;
 mod node;
 mod prim;
 mod query;
+mod stack;
 mod walk;
 
 use glam::{Vec2, Vec3};
@@ -13,7 +14,7 @@ use crate::{Aabb, Hit, Ray, Shape, Sphere};
 use node::Node4;
 use prim::{Found, Geometry, PrimInfo, direction_of};
 use query::RayQuery;
-use walk::{ArrayStack, FIXED_STACK, SMALL_STACK, StackKind};
+use stack::{ArrayStack, FIXED_STACK, SMALL_STACK, StackKind};
 
 /// A 4-wide BVH over every triangle and sphere of a scene, owning the shapes: obvhs' binary BVH
 /// (built by PLOC) collapsed to nodes that test four uncompressed child boxes at once. Queries

@@ -6,7 +6,7 @@ use glam::Vec3;
 use super::Accel;
 use super::prim::PrimInfo;
 use super::query::RayQuery;
-use super::walk::StackKind;
+use super::stack::StackKind;
 use crate::sphere::SphereGeom;
 use crate::triangle::TriangleCoords;
 use crate::{Ray, Shape, Sphere, TriangleMesh};
