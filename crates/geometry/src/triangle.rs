@@ -228,18 +228,18 @@ const fn gamma(n: f32) -> f32 {
 }
 
 /// Numbers the error bound can be computed on: one `f32`, or four lanes of them.
-pub(crate) trait Lanes: Copy + Add<Output = Self> + Mul<Output = Self> {
+pub(crate) trait Number: Copy + Add<Output = Self> + Mul<Output = Self> {
     fn splat(x: f32) -> Self;
 }
 
-impl Lanes for f32 {
+impl Number for f32 {
     #[inline(always)]
     fn splat(x: f32) -> Self {
         x
     }
 }
 
-impl Lanes for Vec4 {
+impl Number for Vec4 {
     #[inline(always)]
     fn splat(x: f32) -> Self {
         Vec4::splat(x)
@@ -251,7 +251,7 @@ impl Lanes for Vec4 {
 /// functions and `|1 / det|`. Written once for one triangle and for four, so that both compute it
 /// with the same operations in the same order.
 #[inline(always)]
-pub(crate) fn t_error_bound<T: Lanes>(max: [T; 3], max_e: T, inv_det_abs: T) -> T {
+pub(crate) fn t_error_bound<T: Number>(max: [T; 3], max_e: T, inv_det_abs: T) -> T {
     let [x, y, z] = max;
     let g = |n: f32| T::splat(gamma(n));
     let delta_z = g(3.0) * z;
