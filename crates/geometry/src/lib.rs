@@ -1,7 +1,7 @@
 //! Rays, bounding boxes, triangle meshes, spheres and the scene's bounding volume hierarchy.
 //!
-//! All geometry is in world space and in `f32`. [`Accel`] builds one compressed wide BVH
-//! (obvhs' CWBVH) over every triangle and sphere of a scene and answers closest-hit
+//! All geometry is in world space and in `f32`. [`Accel`] builds one 4-wide BVH (obvhs' PLOC
+//! binary BVH, collapsed) over every triangle and sphere of a scene and answers closest-hit
 //! ([`Accel::intersect`]) and any-hit ([`Accel::occluded`]) queries without allocating.
 //!
 //! Robustness, in brief:
@@ -10,7 +10,8 @@
 //! - spheres use the numerically careful quadratic of Ray Tracing Gems ch. 7, so small spheres far
 //!   from the ray origin keep their precision;
 //! - BVH boxes are tested with a conservative error margin and a lower bound of `t = 0` (obvhs' own
-//!   box test uses a fixed lower bound of `1e-4`, which misses nearby surfaces of small scenes);
+//!   CWBVH box test uses a fixed lower bound of `1e-4`, which misses nearby surfaces of small
+//!   scenes);
 //! - secondary rays leave surfaces through [`offset_ray_origin`] (Wächter and Binder 2019,
 //!   Ray Tracing Gems ch. 6), see [`Ray::spawn`] and [`Ray::spawn_to`].
 //!
@@ -44,6 +45,7 @@ mod ray;
 mod shape;
 mod sphere;
 mod triangle;
+mod triangle4;
 
 pub use aabb::Aabb;
 pub use accel::Accel;

@@ -14,46 +14,53 @@
 //! precision, where the bound is 2^29 times smaller: a ray that really meets a huge triangle
 //! close to its origin (a camera a centimetre above a 10 km ground plane) still hits it.
 
-use glam::{DVec3, Mat3A, Vec3, Vec3A, Vec3Swizzles};
+use std::ops::{Add, Mul};
 
-/// Per-ray data of the watertight test: the ray origin and the shear that maps the ray
-/// direction to +z, each number splatted to all lanes so that one vector operation handles the
-/// same coordinate of all three vertices.
+use glam::{DVec3, Vec3, Vec3A, Vec3Swizzles, Vec4};
+
+/// Per-ray data of the watertight test: the ray origin, the dominant axis `kz` of the direction
+/// and the other two `kx`, `ky`, and the shear that maps the direction to `+z`, each number
+/// splatted so that one vector operation handles the same coordinate of several vertices.
+///
+/// A vertex `p` is sheared to `(d[kx] - sx d[kz], d[ky] - sy d[kz], sz d[kz])` with
+/// `d = p - origin`, `sz = 1 / dir[kz]`, `sx = dir[kx] sz`, `sy = dir[ky] sz`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RayShear {
-    /// Origin coordinates x, y, z, each splatted.
-    origin: [Vec3A; 3],
+    /// Origin coordinates x, y, z.
+    pub(crate) origin: [Vec4; 3],
+    /// `[kx, ky, kz]`.
+    pub(crate) axes: [usize; 3],
+    /// `[sx, sy, sz]`.
+    pub(crate) shear: [Vec4; 3],
     /// The ray direction, for the double-precision recomputation.
     dir: Vec3A,
-    /// `shear[i][j]`: coefficient of source coordinate j in sheared coordinate i, splatted.
-    /// Rows: `x' = v[kx] - sx v[kz]`, `y' = v[ky] - sy v[kz]`, `z' = sz v[kz]`.
-    shear: [[Vec3A; 3]; 3],
 }
 
-/// A triangle's vertices stored by coordinate: `x` holds the x coordinates of `p0`, `p1`, `p2`
-/// (in its lanes 0, 1, 2), and likewise `y` and `z`.
+/// A triangle's vertices stored by coordinate: `coords[0]` holds the x coordinates of `p0`, `p1`,
+/// `p2` (in its lanes 0, 1, 2), and likewise y and z.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct TriangleCoords {
-    pub x: Vec3A,
-    pub y: Vec3A,
-    pub z: Vec3A,
+    pub coords: [Vec3A; 3],
 }
 
 impl TriangleCoords {
     /// The triangle with vertices `p0`, `p1`, `p2`.
     pub fn new([p0, p1, p2]: [Vec3A; 3]) -> Self {
         Self {
-            x: Vec3A::new(p0.x, p1.x, p2.x),
-            y: Vec3A::new(p0.y, p1.y, p2.y),
-            z: Vec3A::new(p0.z, p1.z, p2.z),
+            coords: [
+                Vec3A::new(p0.x, p1.x, p2.x),
+                Vec3A::new(p0.y, p1.y, p2.y),
+                Vec3A::new(p0.z, p1.z, p2.z),
+            ],
         }
     }
 
     /// The point with barycentric coordinates `b` (weights of `p0`, `p1`, `p2`), summed in
-    /// vertex order.
+    /// vertex order (what [`crate::triangle4::Triangle4::point`] must match).
+    #[cfg(test)]
     pub fn point(&self, b: Vec3) -> Vec3 {
         let along = |c: Vec3A| c.x * b.x + c.y * b.y + c.z * b.z;
-        Vec3::new(along(self.x), along(self.y), along(self.z))
+        Vec3::from(self.coords.map(along))
     }
 }
 
@@ -69,48 +76,29 @@ impl RayShear {
     #[inline(always)]
     pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
         // kz is the dominant axis; (kx, ky) follow it cyclically, swapped when the ray looks
-        // down -kz so that the projected triangle keeps its winding. Each case writes the shear's
-        // rows directly rather than permuting through indexed arrays (the matrix's columns below
-        // hold the rows).
+        // down -kz so that the projected triangle keeps its winding.
         let a = dir.abs();
-        let (x, y, z) = (dir.x, dir.y, dir.z);
-        let shear = if a.x >= a.y && a.x >= a.z {
-            // kz = x; (kx, ky) = (y, z), swapped for x < 0.
-            let sz = 1.0 / x;
-            let (row_x, row_y) = if x < 0.0 {
-                (Vec3A::new(-z * sz, 0.0, 1.0), Vec3A::new(-y * sz, 1.0, 0.0))
-            } else {
-                (Vec3A::new(-y * sz, 1.0, 0.0), Vec3A::new(-z * sz, 0.0, 1.0))
-            };
-            Mat3A::from_cols(row_x, row_y, Vec3A::new(sz, 0.0, 0.0))
+        let kz = if a.x >= a.y && a.x >= a.z {
+            0
         } else if a.y >= a.z {
-            // kz = y; (kx, ky) = (z, x), swapped for y < 0.
-            let sz = 1.0 / y;
-            let (row_x, row_y) = if y < 0.0 {
-                (Vec3A::new(1.0, -x * sz, 0.0), Vec3A::new(0.0, -z * sz, 1.0))
-            } else {
-                (Vec3A::new(0.0, -z * sz, 1.0), Vec3A::new(1.0, -x * sz, 0.0))
-            };
-            Mat3A::from_cols(row_x, row_y, Vec3A::new(0.0, sz, 0.0))
+            1
         } else {
-            // kz = z; (kx, ky) = (x, y), swapped for z < 0.
-            let sz = 1.0 / z;
-            let (row_x, row_y) = if z < 0.0 {
-                (Vec3A::new(0.0, 1.0, -y * sz), Vec3A::new(1.0, 0.0, -x * sz))
-            } else {
-                (Vec3A::new(1.0, 0.0, -x * sz), Vec3A::new(0.0, 1.0, -y * sz))
-            };
-            Mat3A::from_cols(row_x, row_y, Vec3A::new(0.0, 0.0, sz))
+            2
         };
-        let splat = |row: Vec3A| [row.x, row.y, row.z].map(Vec3A::splat);
+        let (next, after) = ((kz + 1) % 3, (kz + 2) % 3);
+        // Through an array: indexing a vector by a variable compiles to a jump table.
+        let d = dir.to_array();
+        let (kx, ky) = if d[kz] < 0.0 {
+            (after, next)
+        } else {
+            (next, after)
+        };
+        let sz = 1.0 / d[kz];
         Self {
-            origin: [origin.x, origin.y, origin.z].map(Vec3A::splat),
+            origin: [origin.x, origin.y, origin.z].map(Vec4::splat),
+            axes: [kx, ky, kz],
+            shear: [d[kx] * sz, d[ky] * sz, sz].map(Vec4::splat),
             dir,
-            shear: [
-                splat(shear.x_axis),
-                splat(shear.y_axis),
-                splat(shear.z_axis),
-            ],
         }
     }
 
@@ -118,15 +106,13 @@ impl RayShear {
     #[inline(always)]
     pub fn intersect(&self, tri: &TriangleCoords, t_max: f32) -> Option<TriangleHit> {
         // Sheared coordinates of the three vertices a, b, c, by coordinate: xs = (a.x, b.x, c.x).
-        let d = [
-            tri.x - self.origin[0],
-            tri.y - self.origin[1],
-            tri.z - self.origin[2],
-        ];
-        let sheared = |row: &[Vec3A; 3]| row[0] * d[0] + row[1] * d[1] + row[2] * d[2];
-        let xs = sheared(&self.shear[0]);
-        let ys = sheared(&self.shear[1]);
-        let zs = sheared(&self.shear[2]);
+        let [kx, ky, kz] = self.axes;
+        let d = |k: usize| tri.coords[k] - Vec3A::from_vec4(self.origin[k]);
+        let [sx, sy, sz] = self.shear.map(Vec3A::from_vec4);
+        let dz = d(kz);
+        let xs = d(kx) - sx * dz;
+        let ys = d(ky) - sy * dz;
+        let zs = sz * dz;
         // Edge functions (u, v, w) = (c.x b.y - c.y b.x, a.x c.y - a.y c.x, b.x a.y - b.y a.x).
         let mut edges = xs.zxy() * ys.yzx() - ys.zxy() * xs.yzx();
         if edges.cmpeq(Vec3A::ZERO).any() {
@@ -155,76 +141,84 @@ impl RayShear {
         }
         let inv_det = 1.0 / det;
         let t = t_scaled * inv_det;
-        let max = Vec3A::new(
-            xs.abs().max_element(),
-            ys.abs().max_element(),
-            zs.abs().max_element(),
-        );
+        let max = [xs, ys, zs].map(|v| v.abs().max_element());
         if t >= t_max {
             return None;
         }
-        if t > t_error_bound(max, edges, inv_det) {
+        let bound = t_error_bound(max, edges.abs().max_element(), inv_det.abs());
+        if t > bound {
             return Some(TriangleHit {
                 t,
                 bary: Vec3::from(edges * inv_det),
             });
         }
-        self.intersect_f64(tri, t_max)
+        intersect_f64(self.origin_point(), self.dir, tri, t_max)
     }
 
-    /// The same test in double precision, for hits too close to the origin for the single
-    /// precision error bound to place them in front of it.
-    #[cold]
-    fn intersect_f64(&self, tri: &TriangleCoords, t_max: f32) -> Option<TriangleHit> {
-        let dir = self.dir.as_dvec3();
-        let kz = dir.abs().max_position();
-        let (kx, ky) = if dir[kz] < 0.0 {
-            ((kz + 2) % 3, (kz + 1) % 3)
-        } else {
-            ((kz + 1) % 3, (kz + 2) % 3)
-        };
-        let (sx, sy, sz) = (dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]);
-        let origin = DVec3::new(
-            f64::from(self.origin[0].x),
-            f64::from(self.origin[1].x),
-            f64::from(self.origin[2].x),
-        );
-        let sheared = |i: usize| {
-            let p = DVec3::new(
-                f64::from(tri.x[i]),
-                f64::from(tri.y[i]),
-                f64::from(tri.z[i]),
-            ) - origin;
-            DVec3::new(p[kx] - sx * p[kz], p[ky] - sy * p[kz], sz * p[kz])
-        };
-        let (a, b, c) = (sheared(0), sheared(1), sheared(2));
-        let edges = DVec3::new(
-            c.x * b.y - c.y * b.x,
-            a.x * c.y - a.y * c.x,
-            b.x * a.y - b.y * a.x,
-        );
-        if edges.min_element() < 0.0 && edges.max_element() > 0.0 {
-            return None;
-        }
-        let det = edges.element_sum();
-        if det == 0.0 {
-            return None;
-        }
-        let t = (edges.x * a.z + edges.y * b.z + edges.z * c.z) / det;
-        let max = a.abs().max(b.abs()).max(c.abs());
-        let gamma = |n: f64| n * f64::EPSILON * 0.5 / (1.0 - n * f64::EPSILON * 0.5);
-        let delta_z = gamma(3.0) * max.z;
-        let delta_x = gamma(5.0) * (max.x + max.z);
-        let delta_y = gamma(5.0) * (max.y + max.z);
-        let delta_e = 2.0 * (gamma(2.0) * max.x * max.y + delta_y * max.x + delta_x * max.y);
-        let max_e = edges.abs().max_element();
-        let bound =
-            3.0 * (gamma(3.0) * max_e * max.z + delta_e * max.z + delta_z * max_e) / det.abs();
-        (t > bound && t < f64::from(t_max) && t as f32 > 0.0).then(|| TriangleHit {
-            t: t as f32,
-            bary: (edges / det).as_vec3(),
-        })
+    /// The ray origin (the first lane of the splatted coordinates).
+    #[inline(always)]
+    pub(crate) fn origin_point(&self) -> Vec3A {
+        Vec3A::new(self.origin[0].x, self.origin[1].x, self.origin[2].x)
     }
+
+    /// The ray direction.
+    #[inline(always)]
+    pub(crate) fn dir(&self) -> Vec3A {
+        self.dir
+    }
+}
+
+/// The same test in double precision, for hits too close to the origin for the single
+/// precision error bound to place them in front of it.
+///
+/// A free function of values (not of the `RayShear`), so that the hot caller's ray data need
+/// not be kept in memory for it.
+#[cold]
+fn intersect_f64(
+    origin: Vec3A,
+    dir: Vec3A,
+    tri: &TriangleCoords,
+    t_max: f32,
+) -> Option<TriangleHit> {
+    let dir = dir.as_dvec3();
+    let kz = dir.abs().max_position();
+    let (kx, ky) = if dir[kz] < 0.0 {
+        ((kz + 2) % 3, (kz + 1) % 3)
+    } else {
+        ((kz + 1) % 3, (kz + 2) % 3)
+    };
+    let (sx, sy, sz) = (dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]);
+    let origin = origin.as_dvec3();
+    let sheared = |i: usize| {
+        let p = DVec3::from(tri.coords.map(|c| f64::from(c[i]))) - origin;
+        DVec3::new(p[kx] - sx * p[kz], p[ky] - sy * p[kz], sz * p[kz])
+    };
+    let (a, b, c) = (sheared(0), sheared(1), sheared(2));
+    let edges = DVec3::new(
+        c.x * b.y - c.y * b.x,
+        a.x * c.y - a.y * c.x,
+        b.x * a.y - b.y * a.x,
+    );
+    if edges.min_element() < 0.0 && edges.max_element() > 0.0 {
+        return None;
+    }
+    let det = edges.element_sum();
+    if det == 0.0 {
+        return None;
+    }
+    let t = (edges.x * a.z + edges.y * b.z + edges.z * c.z) / det;
+    let max = a.abs().max(b.abs()).max(c.abs());
+    let gamma = |n: f64| n * f64::EPSILON * 0.5 / (1.0 - n * f64::EPSILON * 0.5);
+    let delta_z = gamma(3.0) * max.z;
+    let delta_x = gamma(5.0) * (max.x + max.z);
+    let delta_y = gamma(5.0) * (max.y + max.z);
+    let delta_e = 2.0 * (gamma(2.0) * max.x * max.y + delta_y * max.x + delta_x * max.y);
+    let max_e = edges.abs().max_element();
+    let bound = 3.0 * (gamma(3.0) * max_e * max.z + delta_e * max.z + delta_z * max_e) / det.abs();
+    (t > bound && t < f64::from(t_max) && t as f32 > 0.0).then(|| TriangleHit {
+        t: t as f32,
+        bary: (edges / det).as_vec3(),
+    })
 }
 
 /// `n u / (1 - n u)` with `u = 2^-24`: the relative error bound of `n` rounded operations.
@@ -233,16 +227,38 @@ const fn gamma(n: f32) -> f32 {
     n * u / (1.0 - n * u)
 }
 
+/// Numbers the error bound can be computed on: one `f32`, or four lanes of them.
+pub(crate) trait Number: Copy + Add<Output = Self> + Mul<Output = Self> {
+    fn splat(x: f32) -> Self;
+}
+
+impl Number for f32 {
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        x
+    }
+}
+
+impl Number for Vec4 {
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        Vec4::splat(x)
+    }
+}
+
 /// Bound on the absolute rounding error of `t` computed from the largest magnitude `max` of each
-/// sheared coordinate over the three vertices, the edge functions `edges` and `1 / det`.
+/// sheared coordinate over the three vertices, the largest magnitude `max_e` of the edge
+/// functions and `|1 / det|`. Written once for one triangle and for four, so that both compute it
+/// with the same operations in the same order.
 #[inline(always)]
-fn t_error_bound(max: Vec3A, edges: Vec3A, inv_det: f32) -> f32 {
-    let delta_z = gamma(3.0) * max.z;
-    let delta_x = gamma(5.0) * (max.x + max.z);
-    let delta_y = gamma(5.0) * (max.y + max.z);
-    let delta_e = 2.0 * (gamma(2.0) * max.x * max.y + delta_y * max.x + delta_x * max.y);
-    let max_e = edges.abs().max_element();
-    3.0 * (gamma(3.0) * max_e * max.z + delta_e * max.z + delta_z * max_e) * inv_det.abs()
+pub(crate) fn t_error_bound<T: Number>(max: [T; 3], max_e: T, inv_det_abs: T) -> T {
+    let [x, y, z] = max;
+    let g = |n: f32| T::splat(gamma(n));
+    let delta_z = g(3.0) * z;
+    let delta_x = g(5.0) * (x + z);
+    let delta_y = g(5.0) * (y + z);
+    let delta_e = T::splat(2.0) * (g(2.0) * x * y + delta_y * x + delta_x * y);
+    T::splat(3.0) * (g(3.0) * max_e * z + delta_e * z + delta_z * max_e) * inv_det_abs
 }
 
 #[cfg(test)]

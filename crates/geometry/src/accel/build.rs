@@ -1,24 +1,41 @@
-//! Gathering the primitives of all shapes and building the CWBVH over them.
-
-use std::time::Duration;
+//! Gathering the primitives of all shapes and building the hierarchy over them.
 
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb as BvhAabb;
-use obvhs::cwbvh::CwBvh;
-use obvhs::cwbvh::builder::build_cwbvh;
+use obvhs::bvh2::Bvh2;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::ploc::PlocBuilder;
 
-use super::prim::{PrimGeom, PrimInfo, direction_of};
+use super::collapse::collapse;
+use super::node::{ChildRef, Node4};
+use super::prim::{Geometry, PrimInfo, direction_of};
 use crate::sphere::SphereGeom;
 use crate::triangle::TriangleCoords;
+use crate::triangle4::Triangle4;
 use crate::{Aabb, Shape};
 
-/// The built hierarchy and its primitives in BVH order.
+/// The most triangles a leaf holds (one packet).
+const MAX_LEAF: u32 = 4;
+
+/// The built hierarchy and its primitives.
 pub(crate) struct Built {
-    pub bvh: CwBvh,
-    pub geoms: Vec<PrimGeom>,
-    pub infos: Vec<PrimInfo>,
+    pub nodes: Vec<Node4>,
+    pub stack_need: usize,
+    pub geometry: Geometry,
+    /// Ids of the triangles of packet `p` at `4 p .. 4 p + 4` ([`PrimInfo::UNUSED`] for unused
+    /// lanes).
+    pub triangle_infos: Vec<PrimInfo>,
+    /// Ids of the spheres, by sphere index.
+    pub sphere_infos: Vec<PrimInfo>,
     pub bounds: Aabb,
+}
+
+/// One primitive's geometry, before it goes into a packet or the sphere list.
+#[derive(Clone, Copy)]
+enum Prim {
+    Triangle(TriangleCoords),
+    Sphere(SphereGeom),
 }
 
 /// Builds the hierarchy over every usable primitive of `shapes`.
@@ -46,7 +63,7 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
                         continue;
                     };
                     let v = [p0, p1, p2].map(Vec3A::from);
-                    geoms.push(PrimGeom::Triangle(TriangleCoords::new(v)));
+                    geoms.push(Prim::Triangle(TriangleCoords::new(v)));
                     infos.push(PrimInfo {
                         shape: shape_index,
                         prim: u32::try_from(prim).expect("fewer than 2^32 triangles per mesh"),
@@ -63,7 +80,7 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
                 if !(sphere.radius > 0.0 && b.min.is_finite() && b.max.is_finite()) {
                     continue;
                 }
-                geoms.push(PrimGeom::Sphere(SphereGeom {
+                geoms.push(Prim::Sphere(SphereGeom {
                     center: sphere.center.into(),
                     radius: sphere.radius,
                 }));
@@ -80,34 +97,64 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
     let bounds = boxes.iter().fold(Aabb::EMPTY, |acc, b| {
         acc.union(Aabb::new(b.min.into(), b.max.into()))
     });
-    let bvh = if boxes.is_empty() {
-        CwBvh::default()
-    } else {
-        let padded: Vec<BvhAabb> = boxes
-            .iter()
-            .enumerate()
-            .map(|(i, b)| tie_breaking_pad(i, b))
-            .collect();
-        build_cwbvh(
-            &padded,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        )
-    };
-    Built {
-        geoms: bvh
-            .primitive_indices
-            .iter()
-            .map(|&i| geoms[i as usize])
-            .collect(),
-        infos: bvh
-            .primitive_indices
-            .iter()
-            .map(|&i| infos[i as usize])
-            .collect(),
-        bvh,
+    let padded: Vec<BvhAabb> = boxes
+        .iter()
+        .enumerate()
+        .map(|(i, b)| tie_breaking_pad(i, b))
+        .collect();
+    let mut built = Built {
+        nodes: Vec::new(),
+        stack_need: 0,
+        geometry: Geometry::default(),
+        triangle_infos: Vec::new(),
+        sphere_infos: Vec::new(),
         bounds,
-    }
+    };
+    let tree = collapse(
+        &binary(&padded),
+        MAX_LEAF,
+        |i| matches!(geoms[i as usize], Prim::Triangle(_)),
+        |prims| {
+            let prim = |i: &u32| geoms[*i as usize];
+            let info = |i: &u32| infos[*i as usize];
+            if let [i] = prims
+                && let Prim::Sphere(sphere) = prim(i)
+            {
+                built.geometry.spheres.push(sphere);
+                built.sphere_infos.push(info(i));
+                return ChildRef::sphere(built.geometry.spheres.len() - 1);
+            }
+            let triangles = prims.iter().map(|i| match prim(i) {
+                Prim::Triangle(tri) => tri,
+                Prim::Sphere(_) => unreachable!("spheres do not share leaves"),
+            });
+            built.geometry.packets.push(Triangle4::new(triangles));
+            built.triangle_infos.extend(prims.iter().map(info));
+            built
+                .triangle_infos
+                .resize(4 * built.geometry.packets.len(), PrimInfo::UNUSED);
+            ChildRef::triangles(built.geometry.packets.len() - 1, prims.len())
+        },
+    );
+    built.nodes = tree.nodes;
+    built.stack_need = tree.stack_need;
+    built
+}
+
+/// obvhs' binary BVH over `boxes` with the settings of its `medium_build` (PLOC, then SAH-driven
+/// reinsertion).
+fn binary(boxes: &[BvhAabb]) -> Bvh2 {
+    let params = BvhBuildParams::medium_build();
+    let count = u32::try_from(boxes.len()).expect("fewer than 2^32 primitives");
+    let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
+        params.ploc_search_distance,
+        boxes,
+        (0..count).collect(),
+        params.sort_precision,
+        params.search_depth_threshold,
+    );
+    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
+    bvh2
 }
 
 /// Box `b` of primitive `i`, grown by a pseudo-random fraction of `1e-4` of its size (plus a few

@@ -1,39 +1,43 @@
 //! The scene's bounding volume hierarchy over all shapes.
 
 mod build;
+mod collapse;
 mod node;
 mod prim;
 mod query;
+mod stack;
 mod walk;
 
-use glam::{UVec2, Vec2, Vec3};
-use obvhs::cwbvh::CwBvh;
-use obvhs::faststack::{FastStack, HeapStack, StackStack};
+use glam::{Vec2, Vec3};
 
 use crate::{Aabb, Hit, Ray, Shape, Sphere};
-use node::hit_children;
-use prim::{PrimGeom, PrimHit, PrimInfo, direction_of};
+use node::Node4;
+use prim::{Found, Geometry, PrimInfo, direction_of};
 use query::RayQuery;
-use walk::{FIXED_STACK, SMALL_STACK, StackKind, Walk};
+use stack::{ArrayStack, FIXED_STACK, SMALL_STACK, StackKind};
 
-/// A compressed wide BVH (obvhs' CWBVH, built by PLOC) over every triangle and sphere of a
-/// scene, owning the shapes. Queries do not allocate (except on pathologically deep trees, see
-/// below) and may run from many threads at once.
+/// A 4-wide BVH over every triangle and sphere of a scene, owning the shapes: obvhs' binary BVH
+/// (built by PLOC) collapsed to nodes that test four uncompressed child boxes at once. Queries
+/// do not allocate (except on pathologically deep trees, see below) and may run from many
+/// threads at once.
 ///
 /// Triangles with no area or a non-finite vertex, and spheres with a non-positive or non-finite
 /// radius or centre, are left out: rays never hit them.
 pub struct Accel {
     shapes: Vec<Shape>,
-    bvh: CwBvh,
-    /// Primitive geometry in BVH order: a leaf's `primitive_id` indexes it directly.
-    geoms: Vec<PrimGeom>,
-    /// Ids and normals of the primitives, in the same order as `geoms`.
-    infos: Vec<PrimInfo>,
+    /// The hierarchy, root first (empty when there are no primitives).
+    nodes: Vec<Node4>,
+    /// Triangle packets and spheres, which leaves refer to.
+    geometry: Geometry,
+    /// Ids and normals of the triangles: lane `l` of packet `p` at `4 p + l`.
+    triangle_infos: Vec<PrimInfo>,
+    /// Ids of the spheres, by sphere index.
+    sphere_infos: Vec<PrimInfo>,
     bounds: Aabb,
     /// The traversal stack the tree needs: small for small scenes, on the heap (allocated per
-    /// query, sized to `depth`) for trees too deep for the fixed stack.
+    /// query, sized to `stack_need`) for trees too deep for the fixed stack.
     stack: StackKind,
-    depth: usize,
+    stack_need: usize,
 }
 
 impl Accel {
@@ -44,15 +48,15 @@ impl Accel {
     /// creates them.
     pub fn new(shapes: Vec<Shape>) -> Accel {
         let built = build::build(&shapes);
-        let depth = walk::depth(&built.bvh);
         Accel {
             shapes,
-            bvh: built.bvh,
-            geoms: built.geoms,
-            infos: built.infos,
+            nodes: built.nodes,
+            geometry: built.geometry,
+            triangle_infos: built.triangle_infos,
+            sphere_infos: built.sphere_infos,
             bounds: built.bounds,
-            stack: StackKind::for_depth(depth),
-            depth,
+            stack: StackKind::for_need(built.stack_need),
+            stack_need: built.stack_need,
         }
     }
 
@@ -68,92 +72,61 @@ impl Accel {
 
     /// The closest surface along `ray` with `0 < t < t_max`, if any.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        if self.geoms.is_empty() || t_max.is_nan() || t_max <= 0.0 {
+        if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return None;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        let (nodes, geometry) = (&self.nodes[..], &self.geometry);
         let found = match self.stack {
-            StackKind::Small => self.closest(fixed_walk::<SMALL_STACK>(&query), &query, t_max),
-            StackKind::Fixed => self.closest(fixed_walk::<FIXED_STACK>(&query), &query, t_max),
-            StackKind::Heap => self.closest(self.deep_walk(&query), &query, t_max),
+            StackKind::Small => {
+                let mut stack = ArrayStack::<_, SMALL_STACK>::new();
+                walk::closest(nodes, geometry, &mut stack, &query, t_max)
+            }
+            StackKind::Fixed => {
+                let mut stack = ArrayStack::<_, FIXED_STACK>::new();
+                walk::closest(nodes, geometry, &mut stack, &query, t_max)
+            }
+            StackKind::Heap => {
+                let mut stack = Vec::with_capacity(self.stack_need);
+                walk::closest(nodes, geometry, &mut stack, &query, t_max)
+            }
         };
-        found.map(|(id, hit)| self.surface_hit(ray, id, hit))
+        found.map(|found| self.surface_hit(ray, found))
     }
 
     /// True when some surface lies along `ray` with `0 < t < t_max`.
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        if self.geoms.is_empty() || t_max.is_nan() || t_max <= 0.0 {
+        if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return false;
         }
         let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        let (nodes, geometry) = (&self.nodes[..], &self.geometry);
         match self.stack {
-            StackKind::Small => self.any(fixed_walk::<SMALL_STACK>(&query), &query, t_max),
-            StackKind::Fixed => self.any(fixed_walk::<FIXED_STACK>(&query), &query, t_max),
-            StackKind::Heap => self.any(self.deep_walk(&query), &query, t_max),
-        }
-    }
-
-    fn deep_walk(&self, query: &RayQuery) -> Walk<HeapStack<UVec2>> {
-        Walk::new(HeapStack::new_with_capacity(self.depth + 1), query.neg)
-    }
-
-    /// The closest primitive hit with `0 < t < t_max`: its index in `geoms` and the hit.
-    #[inline(always)]
-    fn closest<S: FastStack<UVec2>>(
-        &self,
-        mut walk: Walk<S>,
-        query: &RayQuery,
-        t_max: f32,
-    ) -> Option<(usize, PrimHit)> {
-        let mut closest = t_max;
-        let mut found = None;
-        let mut node;
-        obvhs::traverse!(
-            self.bvh,
-            node,
-            walk,
-            hit_children(node, query, closest, walk.oct_inv4),
-            {
-                let id = walk.primitive_id as usize;
-                if let Some(hit) = self.geoms[id].intersect(query, closest) {
-                    closest = hit.t();
-                    found = Some((id, hit));
-                }
+            StackKind::Small => {
+                let mut stack = ArrayStack::<_, SMALL_STACK>::new();
+                walk::any(nodes, geometry, &mut stack, &query, t_max)
             }
-        );
-        found
-    }
-
-    /// Whether any primitive is hit with `0 < t < t_max`.
-    #[inline(always)]
-    fn any<S: FastStack<UVec2>>(&self, mut walk: Walk<S>, query: &RayQuery, t_max: f32) -> bool {
-        let mut node;
-        'search: {
-            obvhs::traverse!(
-                self.bvh,
-                node,
-                walk,
-                hit_children(node, query, t_max, walk.oct_inv4),
-                {
-                    if self.geoms[walk.primitive_id as usize]
-                        .intersect(query, t_max)
-                        .is_some()
-                    {
-                        break 'search true;
-                    }
-                }
-            );
-            false
+            StackKind::Fixed => {
+                let mut stack = ArrayStack::<_, FIXED_STACK>::new();
+                walk::any(nodes, geometry, &mut stack, &query, t_max)
+            }
+            StackKind::Heap => {
+                let mut stack = Vec::with_capacity(self.stack_need);
+                walk::any(nodes, geometry, &mut stack, &query, t_max)
+            }
         }
     }
 
-    /// Completes the hit of `ray` with primitive `id` (index into `geoms`).
-    fn surface_hit(&self, ray: &Ray, id: usize, hit: PrimHit) -> Hit {
-        let info = self.infos[id];
-        match (&self.shapes[info.shape as usize], &self.geoms[id], hit) {
-            (Shape::Mesh(mesh), PrimGeom::Triangle(coords), PrimHit::Triangle(tri)) => {
-                let b = tri.bary;
-                let p = coords.point(b);
+    /// Completes the hit of `ray` that traversal found.
+    fn surface_hit(&self, ray: &Ray, found: Found) -> Hit {
+        match found {
+            Found::Triangle { packet, lane, hit } => {
+                let info = self.triangle_infos[4 * packet + lane];
+                let Shape::Mesh(mesh) = &self.shapes[info.shape as usize] else {
+                    unreachable!("triangle {packet}:{lane} of a shape that is not a mesh")
+                };
+                let b = hit.bary;
+                let p = self.geometry.packets[packet].point(lane, b);
                 let [i0, i1, i2] = mesh.indices[info.prim as usize].map(|i| i as usize);
                 let ns = mesh
                     .normals
@@ -164,7 +137,7 @@ impl Accel {
                     uv[i0] * b.x + uv[i1] * b.y + uv[i2] * b.z
                 });
                 Hit {
-                    t: tri.t,
+                    t: hit.t,
                     p,
                     ng: info.ng,
                     ns,
@@ -173,7 +146,12 @@ impl Accel {
                     prim: info.prim,
                 }
             }
-            (Shape::Sphere(sphere), PrimGeom::Sphere(geom), PrimHit::Sphere(t)) => {
+            Found::Sphere { index, t } => {
+                let info = self.sphere_infos[index];
+                let Shape::Sphere(sphere) = &self.shapes[info.shape as usize] else {
+                    unreachable!("sphere {index} of a shape that is not a sphere")
+                };
+                let geom = &self.geometry.spheres[index];
                 // The computed point only lands on the centre when the radius is below the float
                 // spacing at that position; the normal then faces the ray.
                 let outward = direction_of(ray.at(t) - sphere.center).unwrap_or(-ray.dir);
@@ -193,13 +171,8 @@ impl Accel {
                     prim: 0,
                 }
             }
-            _ => unreachable!("primitive {id} disagrees with its shape"),
         }
     }
-}
-
-fn fixed_walk<const N: usize>(query: &RayQuery) -> Walk<StackStack<UVec2, N>> {
-    Walk::new(StackStack::default(), query.neg)
 }
 
 #[cfg(test)]

@@ -1,89 +1,333 @@
-//! A conservative ray test against the eight quantised child boxes of a CWBVH node.
+//! The 4-wide BVH node and its conservative ray test against all four child boxes at once.
 //!
-//! obvhs' own test clamps the entry distance to a fixed `1e-4` instead of the ray's `t_min`
-//! (surfaces closer than that are missed) and has no allowance for rounding (a ray grazing a box
-//! face, which is where the extreme primitive of the box lies, can be rejected). This test clamps
-//! to `0` and widens every slab by a bound on its rounding error.
+//! The child boxes are stored by plane (`min_x` of all four children in one vector, and so on),
+//! so one pass of 4-lane vector operations tests all of them. The test clamps the entry distance
+//! to `0` (surfaces just in front of the origin are found, however close) and widens every slab
+//! by a bound on its rounding error (a ray grazing a box face, where the extreme primitive of the
+//! box lies, is never rejected); see [`super::query::BoxRay`].
 
-use glam::{Vec3A, Vec4};
-use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
+use glam::Vec4;
 
-use super::query::RayQuery;
+use super::query::BoxRay;
 
-/// Relative error bound of a slab distance `q * (e / d) + (p - o) / d` in units of its terms'
-/// magnitudes: a few roundings (subtraction, reciprocal, two products, sum) and the outward
-/// rounding of the stored box planes, with room to spare.
-const SLAB_ERROR: f32 = 8.0 * f32::EPSILON;
+/// A reference to a child: an inner node, a packet of one to four triangles, or one sphere.
+///
+/// Bit 31 marks leaves and bit 30 spheres among them; bits 28 and 29 hold a triangle packet's
+/// number of triangles less one, and the bits below the index of the node, packet or sphere.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct ChildRef(u32);
 
-/// The child boxes are quantised to `0..=255` steps of the node's extent.
-const QUANT_MAX: f32 = 255.0;
+/// What a [`ChildRef`] refers to, by index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Child {
+    Node(usize),
+    /// A packet and the bitmask of its lanes in use (bit `i` for lane `i`).
+    Triangles {
+        packet: usize,
+        lanes: u32,
+    },
+    Sphere(usize),
+}
 
-/// Bitmask of the children of `node` that the ray may hit at `0 <= t <= t_max`, in the layout
-/// obvhs' `traverse!` expects (inner children in the high byte, leaf primitives below).
-#[inline(always)]
-pub(crate) fn hit_children(node: &CwBvhNode, ray: &RayQuery, t_max: f32, oct_inv4: u32) -> u32 {
-    let scale = node.compute_extent() * ray.inv_dir;
-    let offset = (Vec3A::from(node.p) - ray.origin) * ray.inv_dir;
-    let error = ((offset.abs() + scale.abs() * QUANT_MAX) * SLAB_ERROR).min(Vec3A::splat(f32::MAX));
-    let near_offset = offset - error;
-    let far_offset = offset + error;
-    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+impl ChildRef {
+    const LEAF: u32 = 1 << 31;
+    const SPHERE: u32 = 1 << 30;
+    const COUNT_SHIFT: u32 = 28;
+    /// One more than the largest index of any kind.
+    pub const MAX_INDEX: usize = 1 << Self::COUNT_SHIFT;
+    /// The child of an unused slot, whose box no ray hits: it is never followed (and would
+    /// refer to a sphere index no scene reaches).
+    pub const EMPTY: ChildRef = ChildRef(u32::MAX);
 
-    let mut hit_mask = 0;
-    for half in 0..2 {
-        let lanes = |q: &[u8; 8]| {
-            let i = 4 * half;
-            Vec4::new(
-                q[i] as f32,
-                q[i + 1] as f32,
-                q[i + 2] as f32,
-                q[i + 3] as f32,
-            )
-        };
-        let slab = |lo: &[u8; 8], hi: &[u8; 8], neg: bool, scale: f32, near: f32, far: f32| {
-            let (q_near, q_far) = if neg {
-                (lanes(hi), lanes(lo))
-            } else {
-                (lanes(lo), lanes(hi))
-            };
+    /// The inner node `index`.
+    pub fn node(index: usize) -> Self {
+        Self::new(0, index)
+    }
+
+    /// The first `count` (one to four) lanes of triangle packet `index`.
+    pub fn triangles(index: usize, count: usize) -> Self {
+        assert!((1..=4).contains(&count), "a packet of {count} triangles");
+        Self::new(
+            Self::LEAF | ((count as u32 - 1) << Self::COUNT_SHIFT),
+            index,
+        )
+    }
+
+    /// The sphere `index`.
+    pub fn sphere(index: usize) -> Self {
+        Self::new(Self::LEAF | Self::SPHERE, index)
+    }
+
+    fn new(kind: u32, index: usize) -> Self {
+        assert!(
+            index < Self::MAX_INDEX,
+            "index {index} does not fit a child reference"
+        );
+        ChildRef(kind | index as u32)
+    }
+
+    /// What this refers to.
+    #[inline(always)]
+    pub fn get(self) -> Child {
+        if self.0 & Self::LEAF == 0 {
+            Child::Node(self.0 as usize)
+        } else if self.0 & Self::SPHERE == 0 {
+            let count_less_one = (self.0 >> Self::COUNT_SHIFT) & 3;
+            Child::Triangles {
+                packet: (self.0 & (Self::MAX_INDEX as u32 - 1)) as usize,
+                lanes: (2 << count_less_one) - 1,
+            }
+        } else {
+            Child::Sphere((self.0 & (Self::MAX_INDEX as u32 - 1)) as usize)
+        }
+    }
+
+    /// The inner node's index, if this refers to one.
+    #[inline(always)]
+    pub fn inner(self) -> Option<usize> {
+        match self.get() {
+            Child::Node(index) => Some(index),
+            _ => None,
+        }
+    }
+}
+
+impl Default for ChildRef {
+    fn default() -> Self {
+        ChildRef::EMPTY
+    }
+}
+
+/// Four child boxes and what they hold. Unused slots have the empty box (`min = +inf`,
+/// `max = -inf`), which no ray hits, and [`ChildRef::EMPTY`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Node4 {
+    /// `min_x, max_x, min_y, max_y, min_z, max_z`, each over the four children.
+    pub planes: [Vec4; 6],
+    pub children: [ChildRef; 4],
+}
+
+impl Node4 {
+    /// A node with four unused slots.
+    pub const EMPTY: Node4 = Node4 {
+        planes: [
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+            Vec4::INFINITY,
+            Vec4::NEG_INFINITY,
+        ],
+        children: [ChildRef::EMPTY; 4],
+    };
+
+    /// Puts the box `min`..`max`, grown by one float step on every side, with content `child`
+    /// in slot `lane`.
+    ///
+    /// Growing keeps a ray that lies in a plane of the box (a zero direction component, the
+    /// origin on the plane) from computing `0 * inf`: such a ray is then strictly inside the
+    /// slab, even for a box of zero thickness (a flat quad's), or strictly outside it.
+    pub fn set(&mut self, lane: usize, min: [f32; 3], max: [f32; 3], child: ChildRef) {
+        for axis in 0..3 {
+            self.planes[2 * axis][lane] = min[axis].next_down();
+            self.planes[2 * axis + 1][lane] = max[axis].next_up();
+        }
+        self.children[lane] = child;
+    }
+
+    /// Which children the ray may hit at `0 <= t <= t_max` (bit `i` for child `i`), and the
+    /// (conservatively small) distances at which it enters their boxes.
+    #[inline(always)]
+    pub fn hit(&self, ray: &BoxRay, t_max: f32) -> (u32, Vec4) {
+        let slab = |axis: usize| {
+            // The planes the ray enters and leaves the slab through; `& 1` lets the compiler see
+            // that both indices are in bounds.
+            let flip = ray.flip[axis] & 1;
+            let entry = self.planes[2 * axis + flip];
+            let exit = self.planes[2 * axis + (flip ^ 1)];
             (
-                q_near * scale + Vec4::splat(near),
-                q_far * scale + Vec4::splat(far),
+                (entry - ray.origin[axis]) * ray.inv_entry[axis],
+                (exit - ray.origin[axis]) * ray.inv_exit[axis],
             )
         };
-        let (x0, x1) = slab(
-            &node.child_min_x,
-            &node.child_max_x,
-            ray.neg.test(0),
-            scale.x,
-            near_offset.x,
-            far_offset.x,
-        );
-        let (y0, y1) = slab(
-            &node.child_min_y,
-            &node.child_max_y,
-            ray.neg.test(1),
-            scale.y,
-            near_offset.y,
-            far_offset.y,
-        );
-        let (z0, z1) = slab(
-            &node.child_min_z,
-            &node.child_max_z,
-            ray.neg.test(2),
-            scale.z,
-            near_offset.z,
-            far_offset.z,
-        );
+        let (x0, x1) = slab(0);
+        let (y0, y1) = slab(1);
+        let (z0, z1) = slab(2);
         let t_enter = x0.max(y0).max(z0).max(Vec4::ZERO);
         let t_exit = x1.min(y1).min(z1).min(Vec4::splat(t_max));
-        let hits = t_enter.cmple(t_exit).bitmask();
-        for lane in 0..4 {
-            if hits & (1 << lane) != 0 {
-                let child = 4 * half + lane;
-                hit_mask |= extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
+        (t_enter.cmple(t_exit).bitmask(), t_enter)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3A;
+
+    use super::*;
+    use crate::accel::query::RayQuery;
+
+    /// xorshift64*, enough for reproducible inputs here.
+    struct Rng(u64);
+
+    impl Rng {
+        fn f32(&mut self) -> f32 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
+        }
+        /// In `[-1, 1)`, with exact zeros and exact box coordinates now and then.
+        fn coord(&mut self, snap: f32) -> f32 {
+            let u = self.f32();
+            if u < 0.1 {
+                snap
+            } else {
+                2.0 * self.f32() - 1.0
             }
         }
     }
-    hit_mask
+
+    /// Whether the ray meets the box at some `0 <= t <= t_max`, in double precision (the
+    /// ray's own `f32` origin and direction, exactly).
+    fn exact_hit(origin: Vec3A, dir: Vec3A, min: [f32; 3], max: [f32; 3], t_max: f32) -> bool {
+        let (mut enter, mut exit) = (0.0f64, f64::from(t_max));
+        for axis in 0..3 {
+            let (o, d) = (f64::from(origin[axis]), f64::from(dir[axis]));
+            let (lo, hi) = (f64::from(min[axis]), f64::from(max[axis]));
+            if d == 0.0 {
+                if o < lo || o > hi {
+                    return false;
+                }
+                continue;
+            }
+            let (a, b) = ((lo - o) / d, (hi - o) / d);
+            enter = enter.max(a.min(b));
+            exit = exit.min(a.max(b));
+        }
+        enter <= exit
+    }
+
+    #[test]
+    fn child_refs_round_trip() {
+        let last = ChildRef::MAX_INDEX - 1;
+        for index in [0, 1, 12345, last] {
+            assert_eq!(ChildRef::node(index).get(), Child::Node(index));
+            for (count, lanes) in [(1, 0b1), (2, 0b11), (3, 0b111), (4, 0b1111)] {
+                let packet = ChildRef::triangles(index, count).get();
+                assert_eq!(
+                    packet,
+                    Child::Triangles {
+                        packet: index,
+                        lanes
+                    }
+                );
+            }
+            assert_eq!(ChildRef::sphere(index).get(), Child::Sphere(index));
+            assert_eq!(ChildRef::node(index).inner(), Some(index));
+            assert_eq!(ChildRef::sphere(index).inner(), None);
+        }
+        assert_eq!(ChildRef::EMPTY.get(), Child::Sphere(last));
+    }
+
+    #[test]
+    fn unused_slots_are_never_hit() {
+        let node = Node4::EMPTY;
+        for dir in [
+            Vec3A::X,
+            Vec3A::NEG_Y,
+            Vec3A::new(0.0, -0.0, 1.0),
+            Vec3A::ONE,
+        ] {
+            let ray = RayQuery::new(Vec3A::ZERO, dir.normalize());
+            assert_eq!(node.hit(&ray.boxes, f32::INFINITY).0, 0, "{dir}");
+        }
+    }
+
+    #[test]
+    fn rays_in_the_plane_of_a_flat_box_hit_it() {
+        let mut node = Node4::EMPTY;
+        node.set(1, [-1.0, -1.0, 0.0], [1.0, 1.0, 0.0], ChildRef::node(1));
+        for (origin, dir) in [
+            (Vec3A::new(-2.0, 0.5, 0.0), Vec3A::X),
+            (
+                Vec3A::new(0.0, 0.0, 0.0),
+                Vec3A::new(1.0, -1.0, 0.0).normalize(),
+            ),
+            (Vec3A::new(1.0, 3.0, -0.0), Vec3A::NEG_Y),
+        ] {
+            let ray = RayQuery::new(origin, dir);
+            assert_eq!(
+                node.hit(&ray.boxes, f32::INFINITY).0,
+                0b10,
+                "{origin} + t {dir}"
+            );
+            // Beside the box, in its plane.
+            let beside = RayQuery::new(origin + Vec3A::new(0.0, 0.0, 1e-3), dir);
+            assert_eq!(
+                node.hit(&beside.boxes, f32::INFINITY).0,
+                0,
+                "{origin} + t {dir}"
+            );
+        }
+    }
+
+    /// Every box the ray meets in exact arithmetic passes the test, including boxes the ray only
+    /// grazes, touches at a corner, or starts on, and rays along the axes.
+    #[test]
+    fn box_test_is_conservative() {
+        let seed = 0x5eed_0010;
+        let mut rng = Rng(seed);
+        let mut hits = 0;
+        for i in 0..200_000 {
+            let mut min = [0.0; 3];
+            let mut max = [0.0; 3];
+            for axis in 0..3 {
+                let (a, b) = (rng.coord(0.0), rng.coord(0.0));
+                (min[axis], max[axis]) = (a.min(b), a.max(b));
+            }
+            // Origins on a face plane or an edge now and then; directions with zero components.
+            let origin = Vec3A::from([0, 1, 2].map(|axis| 2.0 * rng.coord(min[axis])));
+            // Mostly aimed at a point of the box (often on its boundary), with components
+            // zeroed now and then; some in any direction.
+            let dir = if i % 8 == 0 {
+                Vec3A::from([0, 1, 2].map(|_| rng.coord(0.0)))
+            } else {
+                let target = [0, 1, 2].map(|axis| {
+                    let u = rng.f32();
+                    let inside = min[axis] + (max[axis] - min[axis]) * rng.f32();
+                    if u < 0.2 {
+                        min[axis]
+                    } else if u < 0.4 {
+                        max[axis]
+                    } else {
+                        inside
+                    }
+                });
+                let aim = Vec3A::from(target) - origin;
+                Vec3A::from([0, 1, 2].map(|axis| if rng.f32() < 0.1 { 0.0 } else { aim[axis] }))
+            };
+            if dir == Vec3A::ZERO {
+                continue;
+            }
+            let dir = dir.normalize();
+            let t_max = if i % 4 == 0 {
+                3.0 * rng.f32()
+            } else {
+                f32::INFINITY
+            };
+            let mut node = Node4::EMPTY;
+            node.set(2, min, max, ChildRef::node(1));
+            let ray = RayQuery::new(origin, dir);
+            let (mask, t_enter) = node.hit(&ray.boxes, t_max);
+            if exact_hit(origin, dir, min, max, t_max) {
+                hits += 1;
+                assert_eq!(
+                    mask, 0b100,
+                    "seed {seed:#x}, case {i}: box {min:?}..{max:?} missed by {origin} + t {dir}, t_max {t_max}"
+                );
+                assert!(t_enter[2] >= 0.0);
+            }
+        }
+        assert!(hits > 50_000, "only {hits} boxes were hit");
+    }
 }

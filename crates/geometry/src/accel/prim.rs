@@ -1,53 +1,52 @@
-//! Primitives as the BVH stores them: flat, in BVH leaf order, with the ids and normals needed
-//! to turn a hit into a [`crate::Hit`] kept apart from the data traversal touches.
+//! Primitives as the BVH stores them: triangles in packets of four and spheres, in BVH leaf
+//! order, with the ids and normals needed to turn a hit into a [`crate::Hit`] kept apart from
+//! the data traversal touches.
 
 use glam::Vec3;
 
 use crate::sphere::SphereGeom;
-use crate::triangle::{TriangleCoords, TriangleHit};
+use crate::triangle::TriangleHit;
+use crate::triangle4::Triangle4;
 
-use super::query::RayQuery;
+/// The primitives' geometry, which the traversal reads.
+#[derive(Debug, Default)]
+pub(crate) struct Geometry {
+    /// Triangle packets; leaves refer to them by index.
+    pub packets: Vec<Triangle4>,
+    /// Spheres, one per leaf.
+    pub spheres: Vec<SphereGeom>,
+}
 
-/// The geometry of one primitive.
+/// Which primitive a ray hit, and how.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum PrimGeom {
-    Triangle(TriangleCoords),
-    Sphere(SphereGeom),
-}
-
-/// What a primitive test found: the distance, and barycentrics for triangles.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum PrimHit {
-    Triangle(TriangleHit),
-    Sphere(f32),
-}
-
-impl PrimHit {
-    pub fn t(&self) -> f32 {
-        match self {
-            PrimHit::Triangle(hit) => hit.t,
-            PrimHit::Sphere(t) => *t,
-        }
-    }
-}
-
-impl PrimGeom {
-    #[inline(always)]
-    pub fn intersect(&self, ray: &RayQuery, t_max: f32) -> Option<PrimHit> {
-        match self {
-            PrimGeom::Triangle(v) => ray.shear.intersect(v, t_max).map(PrimHit::Triangle),
-            PrimGeom::Sphere(s) => s.intersect(ray.origin, ray.dir, t_max).map(PrimHit::Sphere),
-        }
-    }
+pub(crate) enum Found {
+    Triangle {
+        packet: usize,
+        lane: usize,
+        hit: TriangleHit,
+    },
+    Sphere {
+        index: usize,
+        t: f32,
+    },
 }
 
 /// Which shape and triangle a primitive came from, and its unit geometric normal (triangles only;
 /// zero for spheres, whose normal depends on the hit point).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct PrimInfo {
     pub shape: u32,
     pub prim: u32,
     pub ng: Vec3,
+}
+
+impl PrimInfo {
+    /// The entry of an unused lane of a triangle packet.
+    pub const UNUSED: PrimInfo = PrimInfo {
+        shape: u32::MAX,
+        prim: u32::MAX,
+        ng: Vec3::ZERO,
+    };
 }
 
 /// The unit vector along `v`, if `v` has a direction: scaled first so that tiny and huge

@@ -1,89 +1,169 @@
-//! Traversal state for obvhs' `traverse!` macro with a stack of our choosing.
-//!
-//! obvhs' own state has a fixed 32-entry stack that silently overwrites its top entry when a tree
-//! is deeper than that. The macro only needs a value with the same fields, so the hierarchy picks
-//! a fixed stack for ordinary trees and a heap stack sized to the tree for pathological ones.
+//! Traversal of the 4-wide hierarchy: closest hit (nearest child first, skipping what lies beyond
+//! the closest hit so far) and any hit (stopping at the first), each over a stack of our choosing.
 
-use glam::{BVec3A, UVec2, uvec2};
-use obvhs::cwbvh::CwBvh;
-use obvhs::faststack::FastStack;
+use glam::Vec4;
 
-/// Capacity of the fixed traversal stack. A stack of capacity `n` keeps `n - 1` entries intact
-/// (obvhs' `StackStack` overwrites its last slot when full), and traversal pushes at most one
-/// entry per tree level below the root.
-pub(crate) const FIXED_STACK: usize = 32;
+use super::node::{Child, ChildRef, Node4};
+use super::prim::{Found, Geometry};
+use super::query::RayQuery;
+use super::stack::Stack;
 
-/// Capacity of the stack for shallow trees (small scenes), where zeroing the 32-entry stack for
-/// every ray is a measurable part of a ray's cost.
-pub(crate) const SMALL_STACK: usize = 8;
-
-/// Which traversal stack a tree needs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum StackKind {
-    /// [`SMALL_STACK`] entries on the call stack.
-    Small,
-    /// [`FIXED_STACK`] entries on the call stack.
-    Fixed,
-    /// On the heap, sized to the tree (thousands of exactly coincident primitives).
-    Heap,
+/// A child left for later, with the distance at which the ray enters its box.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Pending {
+    child: ChildRef,
+    t_enter: f32,
 }
 
-impl StackKind {
-    /// The smallest stack that holds the traversal of a tree `depth` levels deep.
-    pub fn for_depth(depth: usize) -> Self {
-        if depth + 1 < SMALL_STACK {
-            StackKind::Small
-        } else if depth + 1 < FIXED_STACK {
-            StackKind::Fixed
-        } else {
-            StackKind::Heap
-        }
-    }
-}
-
-/// Traversal state, field for field what `obvhs::traverse!` reads and writes.
-pub(crate) struct Walk<S> {
-    pub stack: S,
-    pub current_group: UVec2,
-    pub primitive_group: UVec2,
-    pub oct_inv4: u32,
-    pub primitive_id: u32,
-    pub hitmask: u32,
-}
-
-impl<S: FastStack<UVec2>> Walk<S> {
-    /// Starts at the root of a non-empty tree, visiting children in the order that suits a ray
-    /// whose direction has the negative components `neg`.
-    pub fn new(stack: S, neg: BVec3A) -> Self {
-        let axis_bits = |axis: usize, bits: u32| if neg.test(axis) { 0 } else { bits };
+impl Default for Pending {
+    fn default() -> Self {
         Self {
-            stack,
-            current_group: uvec2(0, 0x8000_0000),
-            primitive_group: UVec2::ZERO,
-            oct_inv4: axis_bits(0, 0x0404_0404)
-                | axis_bits(1, 0x0202_0202)
-                | axis_bits(2, 0x0101_0101),
-            primitive_id: 0,
-            hitmask: 0,
+            child: ChildRef::EMPTY,
+            t_enter: 0.0,
         }
     }
 }
 
-/// Number of node levels of `bvh` (1 for a root whose children are all leaves, 0 when empty).
-pub(crate) fn depth(bvh: &CwBvh) -> usize {
-    if bvh.nodes.is_empty() {
-        return 0;
+/// The closest primitive hit with `0 < t < t_max`.
+#[inline(always)]
+pub(crate) fn closest(
+    nodes: &[Node4],
+    geometry: &Geometry,
+    stack: &mut impl Stack<Pending>,
+    query: &RayQuery,
+    t_max: f32,
+) -> Option<Found> {
+    let mut closest = t_max;
+    let mut found = None;
+    let mut current = ChildRef::node(0);
+    loop {
+        match current.get() {
+            Child::Node(index) => {
+                let node = &nodes[index];
+                let (mask, t_enter) = node.hit(&query.boxes, closest);
+                if mask != 0 {
+                    current = nearest_first(node, mask, t_enter, stack);
+                    continue;
+                }
+            }
+            Child::Triangles { packet, lanes } => {
+                let packet4 = &geometry.packets[packet];
+                if let Some((lane, hit)) = query.shear.nearest4(packet4, lanes, closest) {
+                    closest = hit.t;
+                    found = Some(Found::Triangle { packet, lane, hit });
+                }
+            }
+            Child::Sphere(index) => {
+                let sphere = &geometry.spheres[index];
+                if let Some(t) = sphere.intersect(query.origin, query.dir, closest) {
+                    closest = t;
+                    found = Some(Found::Sphere { index, t });
+                }
+            }
+        }
+        current = loop {
+            match stack.pop() {
+                None => return found,
+                Some(entry) if entry.t_enter <= closest => break entry.child,
+                Some(_) => {}
+            }
+        };
     }
-    let mut deepest = 0;
-    let mut pending = vec![(0usize, 1usize)];
-    while let Some((index, level)) = pending.pop() {
-        deepest = deepest.max(level);
-        let node = &bvh.nodes[index];
-        pending.extend(
-            (0..8)
-                .filter(|&c| !node.is_leaf(c))
-                .map(|c| (node.child_node_index(c) as usize, level + 1)),
-        );
+}
+
+/// The child of `node` to visit next among those in `mask` (non-empty): the nearest; the others
+/// are pushed, the farthest first.
+#[inline(always)]
+fn nearest_first(
+    node: &Node4,
+    mask: u32,
+    t_enter: Vec4,
+    stack: &mut impl Stack<Pending>,
+) -> ChildRef {
+    // Through an array: indexing a vector by a variable lane compiles to a jump table.
+    let t_enter = t_enter.to_array();
+    let entry = |lane: u32| Pending {
+        child: node.children[lane as usize],
+        t_enter: t_enter[lane as usize],
+    };
+    let a = entry(mask.trailing_zeros());
+    let rest = mask & (mask - 1);
+    if rest == 0 {
+        return a.child;
     }
-    deepest
+    let b = entry(rest.trailing_zeros());
+    let rest = rest & (rest - 1);
+    if rest == 0 {
+        let (near, far) = if b.t_enter < a.t_enter {
+            (b, a)
+        } else {
+            (a, b)
+        };
+        stack.push(far);
+        return near.child;
+    }
+    // Three or four: sorted farthest first by insertion.
+    let mut sorted = [a, b, entry(rest.trailing_zeros()), Pending::default()];
+    let rest = rest & (rest - 1);
+    let len = if rest == 0 {
+        3
+    } else {
+        sorted[3] = entry(rest.trailing_zeros());
+        4
+    };
+    for i in 1..len {
+        let mut j = i;
+        while j > 0 && sorted[j - 1].t_enter < sorted[j].t_enter {
+            sorted.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    for &pending in &sorted[..len - 1] {
+        stack.push(pending);
+    }
+    sorted[len - 1].child
+}
+
+/// Whether any primitive is hit with `0 < t < t_max`.
+#[inline(always)]
+pub(crate) fn any(
+    nodes: &[Node4],
+    geometry: &Geometry,
+    stack: &mut impl Stack<ChildRef>,
+    query: &RayQuery,
+    t_max: f32,
+) -> bool {
+    let mut current = ChildRef::node(0);
+    loop {
+        match current.get() {
+            Child::Node(index) => {
+                let node = &nodes[index];
+                let (mut mask, _) = node.hit(&query.boxes, t_max);
+                if mask != 0 {
+                    current = node.children[mask.trailing_zeros() as usize];
+                    mask &= mask - 1;
+                    while mask != 0 {
+                        stack.push(node.children[mask.trailing_zeros() as usize]);
+                        mask &= mask - 1;
+                    }
+                    continue;
+                }
+            }
+            Child::Triangles { packet, lanes } => {
+                if query.shear.any4(&geometry.packets[packet], lanes, t_max) {
+                    return true;
+                }
+            }
+            Child::Sphere(index) => {
+                let sphere = &geometry.spheres[index];
+                if sphere.intersect(query.origin, query.dir, t_max).is_some() {
+                    return true;
+                }
+            }
+        }
+        match stack.pop() {
+            Some(child) => current = child,
+            None => return false,
+        }
+    }
 }
