@@ -8,7 +8,8 @@
 //! `mean² + ε`) and `c` from the rays its samples traced ([`PixelCosts`]), both blurred over the
 //! 3 × 3 neighbourhood because a few samples give a very noisy variance, and the allocation gives
 //! each pixel a share proportional to `r / √c`, clamped to [`MIN_SHARE`, `MAX_SHARE`] of the
-//! mean so that an unlucky pilot neither starves a pixel nor spends the image on one. (Costs are
+//! mean so that an unlucky pilot neither starves a pixel nor spends the image on one (a wider
+//! clamp, 0.1 to 8, lost more on scenes of uniform noise, the furnace, than it gained on Veach's). (Costs are
 //! counted in rays, not timed, so that the allocation, and so the image, is reproducible.)
 //!
 //! The pilot is rendered with its own seed and its samples are **not** in the image: the sample
@@ -26,9 +27,9 @@ use crate::film::Film;
 use crate::metrics::RELMSE_EPSILON;
 
 /// Least share of the mean sample count a pixel gets.
-pub const MIN_SHARE: f64 = 0.1;
+pub const MIN_SHARE: f64 = 0.25;
 /// Largest share of the mean sample count a pixel gets.
-pub const MAX_SHARE: f64 = 8.0;
+pub const MAX_SHARE: f64 = 4.0;
 /// The pilot takes this fraction of the budget (samples or seconds)...
 pub const PILOT_FRACTION: f64 = 1.0 / 16.0;
 /// ...but at most this many samples per pixel.
@@ -311,17 +312,19 @@ mod tests {
     fn sample_counts_grow_with_the_mean_and_never_drop_to_zero() {
         let allocation = Allocation {
             width: 2,
-            shares: vec![0.1, 1.9],
+            shares: vec![0.25, 1.75],
         };
         let (low, high) = (UVec2::new(0, 0), UVec2::new(1, 0));
         assert_eq!(allocation.samples(low, 0), 0);
         assert_eq!(allocation.samples(low, 1), 1);
-        assert_eq!(allocation.samples(high, 10), 19);
-        let mut previous = 0;
-        for mean in 0..200 {
-            let n = allocation.samples(low, mean);
-            assert!(n >= previous, "mean {mean}: {n} < {previous}");
-            previous = n;
+        assert_eq!(allocation.samples(high, 8), 14);
+        for pixel in [low, high] {
+            let mut previous = 0;
+            for mean in 0..5000 {
+                let n = allocation.samples(pixel, mean);
+                assert!(n >= previous, "mean {mean}: {n} < {previous}");
+                previous = n;
+            }
         }
     }
 
