@@ -53,7 +53,8 @@ pub enum IntegratorPreset {
     Mis,
     /// `mis` with RIS light selection.
     Ris,
-    /// The best of these for the scene, leaving out what it does not need.
+    /// The best of these for the scene, leaving out what it does not need, with caustics by
+    /// light tracing where they apply (see --light-tracing).
     Auto,
 }
 
@@ -122,7 +123,9 @@ pub struct RenderArgs {
     /// Caustics by light tracing: light seen on a diffuse or glossy surface after mirrors or
     /// glass (light → specular → surface → camera) is traced from the lights and connected to
     /// the camera instead of being found by chance. Needs a pinhole camera, a box filter, a
-    /// delta BSDF and an area light; ignored otherwise. Not with --state or --resume.
+    /// delta BSDF and an area light; ignored otherwise. `auto` turns it on where it applies
+    /// unless --state or --resume is given; with another preset, this flag does. Not with
+    /// --state or --resume.
     #[arg(long, conflicts_with_all = ["state", "resume"])]
     pub light_tracing: bool,
     /// Maximum number of path vertices after the camera, as in Mitsuba (1: emitters seen

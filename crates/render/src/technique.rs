@@ -119,7 +119,13 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
     }
     if let Transport::Path(settings) = &mut transport {
-        settings.light_tracing = args.light_tracing && light_tracing_applies(desc, features);
+        // `auto` traces caustics from the lights wherever that applies, except when the render
+        // is saved for resuming (a saved state cannot hold the light paths' splats yet).
+        let auto_traces = args.integrator == IntegratorPreset::Auto
+            && args.state.is_none()
+            && args.resume.is_none();
+        settings.light_tracing =
+            (args.light_tracing || auto_traces) && light_tracing_applies(desc, features);
     }
 
     let sampler = match args.sampler {

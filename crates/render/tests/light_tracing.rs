@@ -15,7 +15,7 @@ mod common;
 
 use common::{Target, film_mean, load_xml, mis_power, render, z_test};
 use integrators::PathSettings;
-use render::technique::Transport;
+use render::technique::{Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
 
 const SIZE: u32 = 24;
@@ -127,5 +127,28 @@ fn light_traced_caustics_agree_with_the_path_tracer() {
         difference.abs() < 0.01,
         "image means differ by {:.2}% ({replay})",
         100.0 * difference
+    );
+}
+
+#[test]
+fn auto_traces_caustics_where_they_apply_unless_the_render_is_saved() {
+    let load = |name: &str| {
+        scene::load(&common::scenes_dir().join(name), &[]).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let traced = |scene: &scene::RenderScene, flags: &[&str]| match plan_from_flags(scene, flags)
+        .expect("a plan")
+        .transport
+    {
+        Transport::Path(settings) => settings.light_tracing,
+        Transport::Reference(_) => false,
+    };
+    let glass = load("cbox-glass.xml");
+    assert!(traced(&glass, &[]), "auto on glass");
+    assert!(!traced(&glass, &["--state", "s.state"]), "auto, saved");
+    assert!(!traced(&glass, &["--integrator", "mis"]), "mis");
+    assert!(traced(&glass, &["--integrator", "mis", "--light-tracing"]));
+    assert!(
+        !traced(&load("cbox.xml"), &[]),
+        "no delta BSDF: nothing to trace"
     );
 }

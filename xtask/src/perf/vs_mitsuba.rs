@@ -4,9 +4,8 @@
 //! For each scene (default: cbox, cbox-glass, veach-mis) Mitsuba loads the scene file once and
 //! renders a warm-up image (its JIT variants compile kernels on the first render); a 16-spp render
 //! then calibrates the sample count that takes Mitsuba about `--time` seconds (default 2), and a
-//! Strata render with that time budget (`auto` with `--sampler sobol --adaptive
-//! --light-tracing` unless `--strata-flags` say otherwise) gives Strata's sample count for the
-//! same time. Each of `--runs` rounds (default 5) then renders
+//! Strata render with that time budget (`auto` with `--sampler sobol --adaptive` unless
+//! `--strata-flags` say otherwise) gives Strata's sample count for the same time. Each of `--runs` rounds (default 5) then renders
 //! Mitsuba and Strata (in-process) at their sample counts with the round's seed, alternating so
 //! both see the same machine load. Fixed sample counts rather than Strata's `--time` keep its
 //! stratified and blue-noise samplers laid out for the samples actually taken (under a time
@@ -35,11 +34,11 @@ use std::path::{Path, PathBuf};
 /// Scenes compared when none are named.
 const DEFAULT_SCENES: [&str; 3] = ["cbox", "cbox-glass", "veach-mis"];
 
-/// Strata's flags when `--strata-flags` is not given: the `auto` integrator (the default) with
-/// every technique that is not a switch of the integrator preset: the Sobol sampler (the scene
-/// files ask for `independent`, which Mitsuba uses), adaptive sampling and caustics by light
-/// tracing (which `auto` turns on only where they apply).
-const DEFAULT_STRATA_FLAGS: [&str; 4] = ["--sampler", "sobol", "--adaptive", "--light-tracing"];
+/// Strata's flags when `--strata-flags` is not given: the `auto` integrator (the default, with
+/// caustics by light tracing where they apply) and what is not a switch of the integrator: the
+/// Sobol sampler (the scene files ask for `independent`, which Mitsuba uses) and adaptive
+/// sampling.
+const DEFAULT_STRATA_FLAGS: [&str; 3] = ["--sampler", "sobol", "--adaptive"];
 
 /// Samples per pixel of the calibration render.
 const CALIBRATION_SPP: u32 = 16;
