@@ -9,7 +9,8 @@
 //! reported alongside, on the thin-lens scene). Claims at equal time (efficiency
 //! 1 / (relMSE × seconds)): power-proportional light selection over uniform and RIS over
 //! power-proportional on the many-lights scene; Russian roulette over none on the Cornell box;
-//! adaptive sampling over none (at least 1.3×) on Veach's scene.
+//! adaptive sampling over none (at least 1.3×) on Veach's scene; caustics by light tracing over
+//! none (at least 2×) on the glass Cornell box.
 //! Each error is the mean over several seeds, each time the median; the machine should be quiet.
 
 use integrators::reference::ReferenceSettings;
@@ -52,6 +53,7 @@ pub fn measure_all(root: &Path) -> Result<Vec<Claim>, String> {
     claims.push(samplers(root, "thinlens")?);
     claims.push(roulette_on_the_cornell_box(root)?);
     claims.push(adaptive_on_veach(root)?);
+    claims.push(light_tracing_on_the_glass_box(root)?);
     Ok(claims)
 }
 
@@ -455,6 +457,35 @@ fn adaptive_on_veach(root: &Path) -> Result<Claim, String> {
         figure: format!(
             "{spp} spp, 3 seeds: uniform relMSE {error_off:.3e} in {seconds_off:.3} s, adaptive \
              {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x (need > 1.3x)",
+            eff_on / eff_off
+        ),
+    })
+}
+
+/// Caustics by light tracing against the same configuration without it (MIS, roulette, Sobol)
+/// at equal samples per pixel, compared by efficiency, on the glass Cornell box, whose noise is
+/// almost all caustics (light through the glass sphere and off the mirror sphere).
+fn light_tracing_on_the_glass_box(root: &Path) -> Result<Claim, String> {
+    let subject = Subject::load(root, "cbox-glass")?;
+    let spp = 32;
+    let without = PathSettings {
+        russian_roulette: Some(RussianRoulette {
+            start_depth: subject.scene.desc.integrator.rr_depth.max(1),
+        }),
+        ..subject.mis()
+    };
+    let with = PathSettings {
+        light_tracing: true,
+        ..without
+    };
+    let (eff_off, error_off, seconds_off) = efficiency(&subject, without, SamplerKind::Sobol, spp)?;
+    let (eff_on, error_on, seconds_on) = efficiency(&subject, with, SamplerKind::Sobol, spp)?;
+    Ok(Claim {
+        name: "caustics by light tracing improve efficiency on the glass Cornell box".to_string(),
+        passed: eff_on > 2.0 * eff_off,
+        figure: format!(
+            "{spp} spp, 3 seeds: without relMSE {error_off:.3e} in {seconds_off:.3} s, with \
+             {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x (need > 2x)",
             eff_on / eff_off
         ),
     })
