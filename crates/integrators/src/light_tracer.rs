@@ -116,16 +116,7 @@ impl LightTracer {
                 && !surface.bsdf.is_delta()
                 && let Some(camera) = connect(surface.hit.p)
             {
-                self.connect_to_camera(
-                    world,
-                    &surface,
-                    wo,
-                    towards_light,
-                    camera,
-                    tally,
-                    weight,
-                    splat,
-                );
+                connect_to_camera(world, &surface, towards_light, camera, tally, weight, splat);
             }
             if vertex + 1 >= self.max_depth {
                 return;
@@ -167,38 +158,36 @@ impl LightTracer {
             ray = Ray::spawn(surface.hit.p, ng, outgoing);
         }
     }
+}
 
-    /// Joins the non-delta vertex `surface` (light arriving from `towards_light`, `wo` in its
-    /// local frame) to the camera and splats the path's contribution if nothing blocks it.
-    #[allow(clippy::too_many_arguments)]
-    fn connect_to_camera(
-        &self,
-        world: &World,
-        surface: &SurfaceHit<'_>,
-        wo: Vec3,
-        towards_light: Vec3,
-        camera: CameraConnection,
-        tally: &mut impl RayTally,
-        weight: Vec3,
-        splat: &mut impl FnMut(Vec2, Vec3),
-    ) {
-        let to_camera = (camera.target - surface.hit.p).normalize_or_zero();
-        let wc = surface.frame.to_local(to_camera);
-        // Radiance leaves towards the camera; light arrives from the light's side.
-        let f = surface.bsdf.eval(wc, wo);
-        let ng = surface.hit.ng;
-        let cos_light_geometric = ng.dot(towards_light).abs();
-        if f == Vec3::ZERO
-            || cos_light_geometric <= 0.0
-            || !world.unoccluded(surface.hit.p, ng, camera.target, Vec3::ZERO, tally)
-        {
-            return;
-        }
-        // The path tracer's measurement uses the shading normal's cosine towards the light and
-        // the geometric one towards the camera (its ray's hit).
-        let cosines = wo.z.abs() * ng.dot(to_camera).abs() / cos_light_geometric;
-        splat(camera.film, weight * f * (cosines * camera.importance));
+/// Joins the non-delta vertex `surface`, reached by light arriving from `towards_light`, to the
+/// camera and splats the path's contribution (`weight` before this vertex) if nothing blocks it.
+fn connect_to_camera(
+    world: &World,
+    surface: &SurfaceHit<'_>,
+    towards_light: Vec3,
+    camera: CameraConnection,
+    tally: &mut impl RayTally,
+    weight: Vec3,
+    splat: &mut impl FnMut(Vec2, Vec3),
+) {
+    let wo = surface.frame.to_local(towards_light);
+    let to_camera = (camera.target - surface.hit.p).normalize_or_zero();
+    let wc = surface.frame.to_local(to_camera);
+    // Radiance leaves towards the camera; light arrives from the light's side.
+    let f = surface.bsdf.eval(wc, wo);
+    let ng = surface.hit.ng;
+    let cos_light_geometric = ng.dot(towards_light).abs();
+    if f == Vec3::ZERO
+        || cos_light_geometric <= 0.0
+        || !world.unoccluded(surface.hit.p, ng, camera.target, Vec3::ZERO, tally)
+    {
+        return;
     }
+    // The path tracer's measurement uses the shading normal's cosine towards the light and the
+    // geometric one towards the camera (its ray's hit).
+    let cosines = wo.z.abs() * ng.dot(to_camera).abs() / cos_light_geometric;
+    splat(camera.film, weight * f * (cosines * camera.importance));
 }
 
 /// |n_s · wo| |n_g · wi| / (|n_g · wo| |n_s · wi|) for light arriving from `wo` and leaving along
