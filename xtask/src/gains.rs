@@ -93,6 +93,13 @@ impl Subject {
         u32::try_from(self.scene.desc.integrator.max_depth).ok()
     }
 
+    /// Russian roulette from the scene file's start depth, as `strata render` sets it.
+    fn roulette(&self) -> RussianRoulette {
+        RussianRoulette {
+            start_depth: self.scene.desc.integrator.rr_depth.max(1),
+        }
+    }
+
     /// MIS with the power heuristic, power-proportional selection, no roulette.
     fn mis(&self) -> PathSettings {
         PathSettings {
@@ -311,9 +318,41 @@ fn efficiency(
     sampler: SamplerKind,
     spp: u32,
 ) -> Result<(f64, f64, f64), String> {
-    let (images, seconds) = subject.render(Transport::Path(settings), sampler, spp, &SEEDS[..3])?;
+    efficiency_of_plans(subject, |seed| {
+        RenderPlan::fixed_spp(Transport::Path(settings), sampler, seed, spp)
+    })
+}
+
+/// (efficiency 1 / (relMSE × seconds), mean relMSE, median seconds) of `plan(seed)` over three
+/// seeds.
+fn efficiency_of_plans(
+    subject: &Subject,
+    plan: impl Fn(u32) -> RenderPlan,
+) -> Result<(f64, f64, f64), String> {
+    let (images, seconds) = subject.render_plans(&SEEDS[..3], plan)?;
     let error = subject.relmse(&images)?;
     Ok((1.0 / (error * seconds), error, seconds))
+}
+
+/// The claim that a technique raises efficiency more than `need`-fold: `off` and `on` are
+/// [`efficiency`]'s figures without and with it at `spp`.
+fn efficiency_claim(
+    name: &str,
+    spp: u32,
+    off: (f64, f64, f64),
+    on: (f64, f64, f64),
+    need: f64,
+) -> Claim {
+    let ((eff_off, error_off, seconds_off), (eff_on, error_on, seconds_on)) = (off, on);
+    Claim {
+        name: name.to_string(),
+        passed: eff_on > need * eff_off,
+        figure: format!(
+            "{spp} spp, 3 seeds: without relMSE {error_off:.3e} in {seconds_off:.3} s, with \
+             {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x (need > {need}x)",
+            eff_on / eff_off
+        ),
+    }
 }
 
 fn light_selection_on_many_lights(root: &Path) -> Result<Vec<Claim>, String> {
@@ -403,23 +442,16 @@ fn roulette_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
     let spp = 32;
     let without = subject.mis();
     let with = PathSettings {
-        russian_roulette: Some(RussianRoulette {
-            start_depth: subject.scene.desc.integrator.rr_depth.max(1),
-        }),
+        russian_roulette: Some(subject.roulette()),
         ..without
     };
-    let (eff_off, error_off, seconds_off) =
-        efficiency(&subject, without, SamplerKind::Independent, spp)?;
-    let (eff_on, error_on, seconds_on) = efficiency(&subject, with, SamplerKind::Independent, spp)?;
-    Ok(Claim {
-        name: "Russian roulette improves efficiency on the Cornell box".to_string(),
-        passed: eff_on > eff_off,
-        figure: format!(
-            "{spp} spp, 3 seeds: without relMSE {error_off:.3e} in {seconds_off:.3} s, with \
-             {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x",
-            eff_on / eff_off
-        ),
-    })
+    Ok(efficiency_claim(
+        "Russian roulette improves efficiency on the Cornell box",
+        spp,
+        efficiency(&subject, without, SamplerKind::Independent, spp)?,
+        efficiency(&subject, with, SamplerKind::Independent, spp)?,
+        1.0,
+    ))
 }
 
 /// Adaptive sampling against the same configuration without it (roulette, Sobol), at
@@ -428,38 +460,23 @@ fn roulette_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
 fn adaptive_on_veach(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "veach-mis")?;
     let spp = 128;
-    let settings = PathSettings {
-        russian_roulette: Some(RussianRoulette {
-            start_depth: subject.scene.desc.integrator.rr_depth.max(1),
-        }),
+    let transport = Transport::Path(PathSettings {
+        russian_roulette: Some(subject.roulette()),
         ..subject.mis()
-    };
-    let transport = Transport::Path(settings);
-    let mut measured = Vec::new();
-    for adaptive in [false, true] {
-        let (images, seconds) = subject.render_plans(&SEEDS[..3], |seed| RenderPlan {
+    });
+    let plan = |adaptive| {
+        move |seed| RenderPlan {
             adaptive,
             ..RenderPlan::fixed_spp(transport, SamplerKind::Sobol, seed, spp)
-        })?;
-        let error = subject.relmse(&images)?;
-        measured.push((error, seconds, 1.0 / (error * seconds)));
-    }
-    let [
-        (error_off, seconds_off, eff_off),
-        (error_on, seconds_on, eff_on),
-    ] = measured[..]
-    else {
-        unreachable!("two configurations were measured");
+        }
     };
-    Ok(Claim {
-        name: "adaptive sampling improves efficiency on Veach's scene".to_string(),
-        passed: eff_on > 1.3 * eff_off,
-        figure: format!(
-            "{spp} spp, 3 seeds: uniform relMSE {error_off:.3e} in {seconds_off:.3} s, adaptive \
-             {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x (need > 1.3x)",
-            eff_on / eff_off
-        ),
-    })
+    Ok(efficiency_claim(
+        "adaptive sampling improves efficiency on Veach's scene",
+        spp,
+        efficiency_of_plans(&subject, plan(false))?,
+        efficiency_of_plans(&subject, plan(true))?,
+        1.3,
+    ))
 }
 
 /// Caustics by light tracing against the same configuration without it (MIS, roulette, Sobol)
@@ -469,24 +486,18 @@ fn light_tracing_on_the_glass_box(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "cbox-glass")?;
     let spp = 32;
     let without = PathSettings {
-        russian_roulette: Some(RussianRoulette {
-            start_depth: subject.scene.desc.integrator.rr_depth.max(1),
-        }),
+        russian_roulette: Some(subject.roulette()),
         ..subject.mis()
     };
     let with = PathSettings {
         light_tracing: true,
         ..without
     };
-    let (eff_off, error_off, seconds_off) = efficiency(&subject, without, SamplerKind::Sobol, spp)?;
-    let (eff_on, error_on, seconds_on) = efficiency(&subject, with, SamplerKind::Sobol, spp)?;
-    Ok(Claim {
-        name: "caustics by light tracing improve efficiency on the glass Cornell box".to_string(),
-        passed: eff_on > 2.0 * eff_off,
-        figure: format!(
-            "{spp} spp, 3 seeds: without relMSE {error_off:.3e} in {seconds_off:.3} s, with \
-             {error_on:.3e} in {seconds_on:.3} s: efficiency {:.2}x (need > 2x)",
-            eff_on / eff_off
-        ),
-    })
+    Ok(efficiency_claim(
+        "caustics by light tracing improve efficiency on the glass Cornell box",
+        spp,
+        efficiency(&subject, without, SamplerKind::Sobol, spp)?,
+        efficiency(&subject, with, SamplerKind::Sobol, spp)?,
+        2.0,
+    ))
 }

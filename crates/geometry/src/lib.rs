@@ -44,6 +44,8 @@ mod offset;
 mod ray;
 mod shape;
 mod sphere;
+#[cfg(test)]
+mod test_rng;
 mod triangle;
 mod triangle4;
 

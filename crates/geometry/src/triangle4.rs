@@ -225,21 +225,7 @@ impl Lanes {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// xorshift64*, enough for reproducible inputs here.
-    struct Rng(u64);
-
-    impl Rng {
-        fn f32(&mut self) -> f32 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn vec(&mut self) -> Vec3A {
-            Vec3A::new(self.f32(), self.f32(), self.f32()) * 2.0 - 1.0
-        }
-    }
+    use crate::test_rng::TestRng;
 
     fn same(a: Option<TriangleHit>, b: Option<TriangleHit>) -> bool {
         let bits = |h: Option<TriangleHit>| {
@@ -254,11 +240,11 @@ mod tests {
     #[test]
     fn every_lane_matches_the_single_triangle_test() {
         let seed = 0x5eed_0020;
-        let mut rng = Rng(seed);
+        let mut rng = TestRng(seed);
         let mut hits = 0;
         let mut redone = 0;
         for case in 0..100_000 {
-            let corners = [rng.vec(), rng.vec(), rng.vec(), rng.vec()];
+            let corners = [rng.vec_a(), rng.vec_a(), rng.vec_a(), rng.vec_a()];
             let count = 1 + case % 4;
             let tris: Vec<TriangleCoords> = (0..count)
                 .map(|i| {
@@ -269,7 +255,7 @@ mod tests {
                         1 => [corners[0], corners[1], corners[1]],
                         // Huge, through the origin region.
                         2 => [corners[0] * 1e4, corners[1] * 1e4, corners[2] * 1e4],
-                        _ => [rng.vec(), rng.vec(), rng.vec()],
+                        _ => [rng.vec_a(), rng.vec_a(), rng.vec_a()],
                     };
                     TriangleCoords::new(tri)
                 })
@@ -280,14 +266,14 @@ mod tests {
             let origin = if case % 3 == 0 {
                 let tri = &tris[0];
                 let (u, v) = (rng.f32() * 0.5, rng.f32() * 0.5);
-                Vec3A::from(tri.point(Vec3::new(1.0 - u - v, u, v))) + 1e-6 * rng.vec()
+                Vec3A::from(tri.point(Vec3::new(1.0 - u - v, u, v))) + 1e-6 * rng.vec_a()
             } else {
-                2.0 * rng.vec()
+                2.0 * rng.vec_a()
             };
             let target = match case % 4 {
                 0 => corners[case % 3],
                 1 => (corners[0] + corners[1]) * 0.5,
-                _ => rng.vec(),
+                _ => rng.vec_a(),
             };
             let dir = target - origin;
             if dir.length_squared() == 0.0 {
@@ -333,10 +319,12 @@ mod tests {
 
     #[test]
     fn points_match_the_single_triangle_points() {
-        let mut rng = Rng(0x5eed_0021);
+        let mut rng = TestRng(0x5eed_0021);
         for _ in 0..1000 {
             let tris: Vec<TriangleCoords> = (0..4)
-                .map(|_| TriangleCoords::new([rng.vec(), rng.vec(), rng.vec()].map(|v| v * 100.0)))
+                .map(|_| {
+                    TriangleCoords::new([rng.vec_a(), rng.vec_a(), rng.vec_a()].map(|v| v * 100.0))
+                })
                 .collect();
             let packet = Triangle4::new(tris.iter().copied());
             let b = Vec3::new(rng.f32(), rng.f32(), rng.f32());

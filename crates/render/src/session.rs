@@ -98,7 +98,7 @@ fn render_image<T: RayTally + Default + Send>(
         None
     };
     let Some((pilot_budget, image_budget)) = split else {
-        return render_sampled(scene, plan, filter, options, finish, None, true);
+        return render_sampled(&Context::new(scene, plan, filter, options, finish));
     };
     plan.budget.validate()?;
     let pilot_spp = pilot_budget.max_spp.unwrap_or(1);
@@ -109,16 +109,10 @@ fn render_image<T: RayTally + Default + Send>(
         ..*plan
     };
     let costs = PixelCosts::new(scene.desc.film.width, scene.desc.film.height);
-    // The pilot estimates the noise of the path tracer's samples; light paths would only cost.
-    let pilot = render_sampled(
-        scene,
-        &pilot_plan,
-        filter,
-        options,
-        finish,
-        Some(&costs),
-        false,
-    )?;
+    let pilot = render_sampled(&Context {
+        pilot_costs: Some(&costs),
+        ..Context::new(scene, &pilot_plan, filter, options, finish)
+    })?;
     if pilot.interrupted {
         return Ok(pilot);
     }
@@ -136,15 +130,13 @@ fn render_image<T: RayTally + Default + Send>(
         allocation: Some(Arc::new(Allocation::from_pilot(&pilot.film, &costs))),
         ..options.clone()
     };
-    let mut output = render_sampled(
+    let mut output = render_sampled(&Context::new(
         scene,
         &image_plan,
         filter,
         &image_options,
         finish,
-        None,
-        true,
-    )?;
+    ))?;
     output.pilot_spp = pilot.spp;
     output.spp += pilot.spp;
     output.seconds += pilot.seconds;
@@ -153,46 +145,51 @@ fn render_image<T: RayTally + Default + Send>(
     Ok(output)
 }
 
-/// [`render_image`] without a pilot, adding each sample's rays to `costs` if given, and tracing
-/// the light paths the plan's light tracing needs if `light_paths`. The per-sample code is
-/// compiled once per sampler type, so that sampling is inlined into the integrator rather than
-/// dispatched per call.
+/// [`render_image`] without a pilot, as `context` says. The per-sample code is compiled once per
+/// sampler type, so that sampling is inlined into the integrator rather than dispatched per call.
 fn render_sampled<T: RayTally + Default + Send>(
-    scene: &RenderScene,
-    plan: &RenderPlan,
-    filter: &Filter,
-    options: &RenderOptions,
-    finish: &(dyn Fn(&mut T) + Sync),
-    costs: Option<&PixelCosts>,
-    light_paths: bool,
+    context: &Context<'_, T>,
 ) -> Result<RenderOutput, BudgetError> {
-    let context = Context {
-        scene,
-        plan,
-        filter,
-        options,
-        finish,
-        costs,
-        light_paths,
-    };
-    let (seed, spp) = (plan.seed, plan.sampler_spp);
-    match plan.sampler {
-        SamplerKind::Independent => render_with(&context, || IndependentSampler::new(seed, spp)),
-        SamplerKind::Stratified => render_with(&context, || StratifiedSampler::new(seed, spp)),
-        SamplerKind::BlueNoise => render_with(&context, || BlueNoiseSampler::new(seed, spp)),
-        SamplerKind::Sobol => render_with(&context, || SobolSampler::new(seed, spp)),
+    let (seed, spp) = (context.plan.seed, context.plan.sampler_spp);
+    match context.plan.sampler {
+        SamplerKind::Independent => render_with(context, || IndependentSampler::new(seed, spp)),
+        SamplerKind::Stratified => render_with(context, || StratifiedSampler::new(seed, spp)),
+        SamplerKind::BlueNoise => render_with(context, || BlueNoiseSampler::new(seed, spp)),
+        SamplerKind::Sobol => render_with(context, || SobolSampler::new(seed, spp)),
     }
 }
 
-/// The arguments of [`render_sampled`].
+/// One render without a pilot: the scene, plan, filter and options, where each worker's rays
+/// go when it is done, and whether this is an adaptive-sampling pilot.
 struct Context<'a, T> {
     scene: &'a RenderScene,
     plan: &'a RenderPlan,
     filter: &'a Filter,
     options: &'a RenderOptions,
     finish: &'a (dyn Fn(&mut T) + Sync),
-    costs: Option<&'a PixelCosts>,
-    light_paths: bool,
+    /// For an adaptive-sampling pilot, where each sample's rays are added. A pilot estimates the
+    /// noise of the path tracer's samples only, so it traces no light paths.
+    pilot_costs: Option<&'a PixelCosts>,
+}
+
+impl<'a, T> Context<'a, T> {
+    /// A render that is not a pilot.
+    fn new(
+        scene: &'a RenderScene,
+        plan: &'a RenderPlan,
+        filter: &'a Filter,
+        options: &'a RenderOptions,
+        finish: &'a (dyn Fn(&mut T) + Sync),
+    ) -> Self {
+        Self {
+            scene,
+            plan,
+            filter,
+            options,
+            finish,
+            pilot_costs: None,
+        }
+    }
 }
 
 /// [`render_sampled`] with the samplers `new_sampler` makes.
@@ -206,8 +203,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         filter,
         options,
         finish,
-        costs,
-        light_paths,
+        pilot_costs: costs,
     } = *context;
     let world = &scene.world;
     let camera: &Camera = &scene.camera;
@@ -256,7 +252,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         );
     };
     let light_paths: Option<&LightPaths<'_, Worker<'_, S, T>>> =
-        (light_paths && light_tracer.is_some()).then_some(&trace_light_path);
+        (costs.is_none() && light_tracer.is_some()).then_some(&trace_light_path);
     let has_lens = camera.has_lens();
     render_with_light_paths(
         scene.desc.film.width,

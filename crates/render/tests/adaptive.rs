@@ -8,9 +8,7 @@
 
 mod common;
 
-use common::{Target, load_file, mis_power, render, scenes_dir, z_test};
-use render::driver::RenderOptions;
-use render::session::{film_filter, render_scene};
+use common::{Target, load_file, mis_power, render, render_plan, scenes_dir, z_test};
 use render::technique::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 
@@ -43,9 +41,7 @@ fn check(name: &str, adaptive_spp: u32, oracle_spp: u32) {
             adaptive_spp,
         )
     };
-    let filter = film_filter(scene.desc.film.filter).expect("valid filter");
-    let (output, _) =
-        render_scene(&scene, &plan, &filter, &RenderOptions::quiet()).expect("renders");
+    let output = render_plan(&scene, &plan, &format!("{name} / adaptive"));
     assert_eq!(output.spp, adaptive_spp, "the pilot counts in the budget");
     assert!(output.pilot_spp > 0, "a pilot was rendered");
     let counts: Vec<u32> = output.film.pixels().iter().map(|p| p.count).collect();

@@ -165,26 +165,12 @@ mod tests {
 
     use super::*;
     use crate::accel::query::RayQuery;
+    use crate::test_rng::TestRng;
 
-    /// xorshift64*, enough for reproducible inputs here.
-    struct Rng(u64);
-
-    impl Rng {
-        fn f32(&mut self) -> f32 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
-        }
-        /// In `[-1, 1)`, with exact zeros and exact box coordinates now and then.
-        fn coord(&mut self, snap: f32) -> f32 {
-            let u = self.f32();
-            if u < 0.1 {
-                snap
-            } else {
-                2.0 * self.f32() - 1.0
-            }
-        }
+    /// In `[-1, 1)`, with exact zeros and exact box coordinates now and then.
+    fn coord(rng: &mut TestRng, snap: f32) -> f32 {
+        let u = rng.f32();
+        if u < 0.1 { snap } else { 2.0 * rng.f32() - 1.0 }
     }
 
     /// Whether the ray meets the box at some `0 <= t <= t_max`, in double precision (the
@@ -276,21 +262,21 @@ mod tests {
     #[test]
     fn box_test_is_conservative() {
         let seed = 0x5eed_0010;
-        let mut rng = Rng(seed);
+        let mut rng = TestRng(seed);
         let mut hits = 0;
         for i in 0..200_000 {
             let mut min = [0.0; 3];
             let mut max = [0.0; 3];
             for axis in 0..3 {
-                let (a, b) = (rng.coord(0.0), rng.coord(0.0));
+                let (a, b) = (coord(&mut rng, 0.0), coord(&mut rng, 0.0));
                 (min[axis], max[axis]) = (a.min(b), a.max(b));
             }
             // Origins on a face plane or an edge now and then; directions with zero components.
-            let origin = Vec3A::from([0, 1, 2].map(|axis| 2.0 * rng.coord(min[axis])));
+            let origin = Vec3A::from([0, 1, 2].map(|axis| 2.0 * coord(&mut rng, min[axis])));
             // Mostly aimed at a point of the box (often on its boundary), with components
             // zeroed now and then; some in any direction.
             let dir = if i % 8 == 0 {
-                Vec3A::from([0, 1, 2].map(|_| rng.coord(0.0)))
+                Vec3A::from([0, 1, 2].map(|_| coord(&mut rng, 0.0)))
             } else {
                 let target = [0, 1, 2].map(|axis| {
                     let u = rng.f32();

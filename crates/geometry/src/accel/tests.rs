@@ -8,25 +8,11 @@ use super::prim::PrimInfo;
 use super::query::RayQuery;
 use super::stack::StackKind;
 use crate::sphere::SphereGeom;
+use crate::test_rng::TestRng;
 use crate::triangle::TriangleCoords;
 use crate::{Ray, Shape, Sphere, TriangleMesh};
 
-/// xorshift64*, enough for reproducible inputs here.
-struct Rng(u64);
-
-impl Rng {
-    fn f32(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn vec(&mut self) -> Vec3 {
-        Vec3::new(self.f32(), self.f32(), self.f32()) * 2.0 - 1.0
-    }
-}
-
-fn random_scene(rng: &mut Rng, triangles: usize, spheres: usize) -> Vec<Shape> {
+fn random_scene(rng: &mut TestRng, triangles: usize, spheres: usize) -> Vec<Shape> {
     let positions: Vec<Vec3> = (0..triangles)
         .flat_map(|_| {
             let c = rng.vec();
@@ -106,7 +92,7 @@ fn brute_force(prims: &[(PrimInfo, Prim)], ray: &Ray, t_max: f32) -> Option<f32>
 
 /// Checks closest hits and occlusion of `count` random rays against brute force; returns how
 /// many hit something.
-fn check_against_brute_force(accel: &Accel, rng: &mut Rng, count: usize, scene: &str) -> usize {
+fn check_against_brute_force(accel: &Accel, rng: &mut TestRng, count: usize, scene: &str) -> usize {
     let rays = (0..count).map(|i| {
         // Half the rays start outside the scene, half inside it; some have a finite t_max.
         let origin = if i % 2 == 0 {
@@ -155,7 +141,7 @@ fn check_rays(accel: &Accel, rays: impl IntoIterator<Item = (Ray, f32)>, scene: 
 
 #[test]
 fn closest_hit_and_occlusion_match_brute_force() {
-    let mut rng = Rng(0x5eed_0001);
+    let mut rng = TestRng(0x5eed_0001);
     let accel = Accel::new(random_scene(&mut rng, 3000, 60));
     assert_ne!(accel.stack, StackKind::Heap);
     let hits = check_against_brute_force(&accel, &mut rng, 4000, "random soup");
@@ -165,7 +151,7 @@ fn closest_hit_and_occlusion_match_brute_force() {
 
 #[test]
 fn every_stack_size_matches_brute_force() {
-    let mut rng = Rng(0x5eed_0002);
+    let mut rng = TestRng(0x5eed_0002);
     let small = Accel::new(random_scene(&mut rng, 300, 20));
     assert_eq!(
         small.stack,
@@ -190,7 +176,7 @@ fn every_stack_size_matches_brute_force() {
 fn coincident_primitives_build_fast_and_traverse_correctly() {
     // Thousands of identical boxes made obvhs' PLOC build a chain (quadratic time, and a tree
     // deeper than its traversal stack); the tie-breaking pads and the heap stack handle it.
-    let mut rng = Rng(7);
+    let mut rng = TestRng(7);
     let mut shapes = random_scene(&mut rng, 300, 5);
     shapes.push(Shape::Mesh(
         TriangleMesh::new(
@@ -225,7 +211,7 @@ fn coincident_primitives_build_fast_and_traverse_correctly() {
 
 #[test]
 fn deep_trees_use_the_heap_stack() {
-    let mut rng = Rng(11);
+    let mut rng = TestRng(11);
     let shapes = vec![Shape::Mesh(
         TriangleMesh::new(
             vec![Vec3::ZERO, Vec3::X, Vec3::Y],
@@ -249,7 +235,7 @@ fn deep_trees_use_the_heap_stack() {
 
 #[test]
 fn primitive_order_is_a_permutation() {
-    let mut rng = Rng(3);
+    let mut rng = TestRng(3);
     let accel = Accel::new(random_scene(&mut rng, 500, 20));
     let mut seen: Vec<(u32, u32)> = primitives(&accel)
         .iter()
@@ -268,7 +254,7 @@ fn primitive_order_is_a_permutation() {
 /// Axis-aligned unit squares (two triangles each) on the planes `x, y, z = k / 4`, several of
 /// them sharing planes and edges, plus a few random triangles and spheres: the case where rays
 /// run along box faces and start on them.
-fn grid_scene(rng: &mut Rng) -> Vec<Shape> {
+fn grid_scene(rng: &mut TestRng) -> Vec<Shape> {
     let mut positions = Vec::new();
     let mut indices = Vec::new();
     for axis in 0..3 {
@@ -303,7 +289,7 @@ fn grid_scene(rng: &mut Rng) -> Vec<Shape> {
 }
 
 /// A point of every primitive of `accel` (a random point of a triangle, a pole of a sphere).
-fn surface_points(accel: &Accel, rng: &mut Rng) -> Vec<Vec3> {
+fn surface_points(accel: &Accel, rng: &mut TestRng) -> Vec<Vec3> {
     primitives(accel)
         .iter()
         .map(|(_, prim)| match prim {
@@ -323,7 +309,7 @@ fn surface_points(accel: &Accel, rng: &mut Rng) -> Vec<Vec3> {
 
 #[test]
 fn rays_from_surfaces_match_brute_force() {
-    let mut rng = Rng(0x5eed_0003);
+    let mut rng = TestRng(0x5eed_0003);
     let accel = Accel::new(grid_scene(&mut rng));
     let points = surface_points(&accel, &mut rng);
     let rays: Vec<(Ray, f32)> = (0..3000)
@@ -339,7 +325,7 @@ fn rays_from_surfaces_match_brute_force() {
 
 #[test]
 fn axis_parallel_and_grazing_rays_match_brute_force() {
-    let mut rng = Rng(0x5eed_0004);
+    let mut rng = TestRng(0x5eed_0004);
     let accel = Accel::new(grid_scene(&mut rng));
     let axes = [
         Vec3::X,
@@ -352,7 +338,7 @@ fn axis_parallel_and_grazing_rays_match_brute_force() {
     let mut rays = Vec::new();
     for i in 0..4000 {
         // Origins on the grid planes (often on square edges too), or anywhere.
-        let snap = |x: f32, rng: &mut Rng| {
+        let snap = |x: f32, rng: &mut TestRng| {
             if rng.f32() < 0.6 {
                 (x * 4.0).round() / 4.0
             } else {
@@ -386,7 +372,7 @@ fn axis_parallel_and_grazing_rays_match_brute_force() {
 
 #[test]
 fn t_max_right_at_the_hit_matches_brute_force() {
-    let mut rng = Rng(0x5eed_0005);
+    let mut rng = TestRng(0x5eed_0005);
     let accel = Accel::new(grid_scene(&mut rng));
     let mut checked = 0;
     for i in 0..2000 {

@@ -6,7 +6,7 @@
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
-use render::driver::RenderOptions;
+use render::driver::{RenderOptions, RenderOutput};
 use render::film::Film;
 use render::session::{film_filter, render_scene};
 use render::technique::{RenderPlan, Transport};
@@ -62,16 +62,27 @@ pub fn render(
     seed: u32,
     label: &str,
 ) -> Film {
-    let plan = RenderPlan::fixed_spp(transport, sampler, seed, spp);
+    render_plan(
+        scene,
+        &RenderPlan::fixed_spp(transport, sampler, seed, spp),
+        label,
+    )
+    .film
+}
+
+/// A render of `scene` as `plan` says; panics (naming `label`) if any sample was NaN or
+/// infinite.
+pub fn render_plan(scene: &RenderScene, plan: &RenderPlan, label: &str) -> RenderOutput {
     let filter = film_filter(scene.desc.film.filter).expect("valid filter");
-    let (output, _) =
-        render_scene(scene, &plan, &filter, &RenderOptions::quiet()).expect("renders");
+    let (output, _) = render_scene(scene, plan, &filter, &RenderOptions::quiet()).expect("renders");
     assert_eq!(
         (output.non_finite.nan, output.non_finite.inf),
         (0, 0),
-        "{label}: NaN and infinite samples ({spp} spp, seed {seed})"
+        "{label}: NaN and infinite samples ({} spp, seed {})",
+        output.spp,
+        plan.seed
     );
-    output.film
+    output
 }
 
 /// One technique configuration of the path integrator.
