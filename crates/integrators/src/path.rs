@@ -4,10 +4,12 @@
 //! Without light sampling, point lights (which no sampled direction can hit) are still connected
 //! by one shadow ray each, as in the reference integrator.
 //!
-//! Sampler dimensions per vertex, in this order and only for the techniques switched on (so a
-//! configuration consumes a fixed, documented sequence): light choice (1D) and light point (2D)
-//! with next event estimation; BSDF lobe (1D) and BSDF direction (2D) always; roulette (1D) with
-//! Russian roulette.
+//! Sampler dimensions per vertex, in this order and only for the techniques switched on and what
+//! the scene needs (so a configuration consumes a fixed, documented sequence for a scene, the
+//! same at every vertex whatever surface it is on): light choice (1D, with next event
+//! estimation when the scene has more than one light) and light point (2D, with next event
+//! estimation); BSDF lobe (1D, when some material chooses between lobes: a dielectric) and BSDF
+//! direction (2D) always; roulette (1D, with Russian roulette from its start depth on).
 
 use crate::delta_lights::delta_lights;
 use crate::light_choice::choose_light;
@@ -18,6 +20,7 @@ use crate::{RayTally, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
+use materials::Bsdf;
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
 
@@ -41,6 +44,10 @@ struct NextDirection {
 pub struct PathIntegrator {
     settings: PathSettings,
     selector: Option<LightSelector>,
+    /// Whether light sampling draws a number to choose among more than one light.
+    draws_light_choice: bool,
+    /// Whether some material draws a number to choose its lobe.
+    draws_lobe_choice: bool,
 }
 
 /// What the walk remembers about the vertex it just left, to weight emission it finds.
@@ -64,6 +71,8 @@ impl PathIntegrator {
         Self {
             settings,
             selector: LightSelector::new(world.lights(), selection),
+            draws_light_choice: world.lights().len() > 1,
+            draws_lobe_choice: world.materials().iter().any(Bsdf::uses_lobe_choice),
         }
     }
 
@@ -134,7 +143,11 @@ impl PathIntegrator {
             let wo = surface.frame.to_local(-ray.dir);
 
             if settings.sample_lights {
-                let u_choice = sampler.next_1d();
+                let u_choice = if self.draws_light_choice {
+                    sampler.next_1d()
+                } else {
+                    0.5
+                };
                 let u_point = sampler.next_2d();
                 if !surface.bsdf.is_delta() {
                     radiance += throughput
@@ -144,7 +157,11 @@ impl PathIntegrator {
                 radiance += throughput * delta_lights(world, &surface, wo, counters);
             }
 
-            let u_lobe = sampler.next_1d();
+            let u_lobe = if self.draws_lobe_choice {
+                sampler.next_1d()
+            } else {
+                0.5
+            };
             let u_dir = sampler.next_2d();
             let Some(next) = self.next_direction(&surface, wo, u_lobe, u_dir) else {
                 break;
@@ -156,15 +173,15 @@ impl PathIntegrator {
             } else {
                 caustic_chain = first_vertex_non_delta && next.is_delta;
             }
-            if let Some(roulette) = settings.russian_roulette {
+            if let Some(roulette) = settings.russian_roulette
+                && depth >= roulette.start_depth
+            {
                 let u_survive = sampler.next_1d();
-                if depth >= roulette.start_depth {
-                    let survival = (throughput.max_element() * eta_scale).clamp(0.0, 1.0);
-                    if u_survive >= survival {
-                        break;
-                    }
-                    throughput /= survival;
+                let survival = (throughput.max_element() * eta_scale).clamp(0.0, 1.0);
+                if u_survive >= survival {
+                    break;
                 }
+                throughput /= survival;
             }
             if throughput == Vec3::ZERO {
                 break;

@@ -101,6 +101,17 @@ impl Bsdf {
         self.is_delta()
     }
 
+    /// Whether [`Self::sample`] uses its `u_lobe` number (to choose between reflection and
+    /// refraction); the other BSDFs ignore it.
+    #[inline]
+    pub fn uses_lobe_choice(&self) -> bool {
+        match self {
+            Self::Dielectric(_) => true,
+            Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
+            Self::TwoSided(b) => b.inner().uses_lobe_choice(),
+        }
+    }
+
     /// Whether light can pass to the other side of the surface (a dielectric).
     pub fn has_transmission(&self) -> bool {
         match self {
