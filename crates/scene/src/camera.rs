@@ -74,14 +74,14 @@ impl Camera {
                 let aperture = sample_concentric_disk(u_lens) * lens.aperture_radius;
                 let origin = Vec3::new(aperture.x, aperture.y, 0.0);
                 let focus = on_plane * lens.focus_distance;
-                (origin, (focus - origin).normalize())
+                (origin, focus - origin)
             }
-            _ => (Vec3::ZERO, on_plane.normalize()),
+            _ => (Vec3::ZERO, on_plane),
         };
+        // Neither direction is unit length yet: `Ray::new` normalises the world one.
         let near = origin_local + dir_local * (self.near_clip / dir_local.z);
         let origin = self.to_world.transform_point3(near);
-        let dir = self.to_world.transform_vector3(dir_local).normalize();
-        Ray::new(origin, dir)
+        Ray::new(origin, self.to_world.transform_vector3(dir_local))
     }
 
     /// Where the world point `p` appears to this camera if it is a pinhole (no aperture): the
