@@ -9,10 +9,13 @@ use sampling::warp::sample_uniform_triangle;
 use std::f32::consts::PI;
 
 /// A triangle mesh emitting constant radiance from the front side of each triangle, the side
-/// its geometric normal `(p1 − p0) × (p2 − p0)` points to. Points are sampled uniformly by area.
+/// its geometric normal `(p1 − p0) × (p2 − p0)` points to. Points are sampled uniformly by area:
+/// on a mesh of two triangles that make a parallelogram (Mitsuba's `rectangle`), directly on the
+/// parallelogram; otherwise a triangle by area, then a point on it.
 #[derive(Clone, Debug)]
 pub struct MeshAreaLight {
     triangles: Vec<[Vec3; 3]>,
+    parallelogram: Option<Parallelogram>,
     /// Unit geometric normal of each triangle (zero for degenerate ones, which are never sampled).
     normals: Vec<Vec3>,
     area_distribution: CdfTable,
@@ -29,10 +32,11 @@ impl MeshAreaLight {
         let areas: Vec<f32> = triangles.iter().map(triangle_area).collect();
         let total_area: f32 = areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32;
         let area_distribution = CdfTable::new(&areas).ok()?;
-        let normals = triangles
+        let normals: Vec<Vec3> = triangles
             .iter()
             .map(|[p0, p1, p2]| (*p1 - *p0).cross(*p2 - *p0).normalize_or_zero())
             .collect();
+        let parallelogram = Parallelogram::of(&triangles, &normals);
         let (low, high) = triangles.iter().flatten().fold(
             (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
             |(low, high), &p| (low.min(p), high.max(p)),
@@ -40,6 +44,7 @@ impl MeshAreaLight {
         let bounds = (0.5 * (low + high), 0.5 * (high - low).length());
         Some(Self {
             triangles,
+            parallelogram,
             normals,
             area_distribution,
             total_area,
@@ -67,12 +72,23 @@ impl MeshAreaLight {
     /// coincides with `p`.
     #[inline]
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        let (p_light, n_light) = self.sample_point(u);
+        area_sample_towards(p, p_light, n_light, 1.0 / self.total_area, self.radiance)
+    }
+
+    /// A point uniform by area with `u` ∈ [0, 1)², and the unit normal there.
+    #[inline]
+    fn sample_point(&self, u: Vec2) -> (Vec3, Vec3) {
+        if let Some(quad) = &self.parallelogram {
+            return (
+                quad.corner + u.x * quad.edge_u + u.y * quad.edge_v,
+                quad.normal,
+            );
+        }
         let (index, _pmf, u_remapped) = self.area_distribution.sample(u.x);
         let [p0, p1, p2] = self.triangles[index];
         let b = sample_uniform_triangle(Vec2::new(u_remapped, u.y));
-        let p_light = p0 * b.x + p1 * b.y + p2 * b.z;
-        let n_light = self.normals[index];
-        area_sample_towards(p, p_light, n_light, 1.0 / self.total_area, self.radiance)
+        (p0 * b.x + p1 * b.y + p2 * b.z, self.normals[index])
     }
 
     /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`
@@ -86,17 +102,8 @@ impl MeshAreaLight {
     /// direction about its front normal (`u_dir`).
     #[inline]
     pub fn sample_emission(&self, u_point: Vec2, u_dir: Vec2) -> Option<EmissionSample> {
-        let (index, _pmf, u_remapped) = self.area_distribution.sample(u_point.x);
-        let [p0, p1, p2] = self.triangles[index];
-        let b = sample_uniform_triangle(Vec2::new(u_remapped, u_point.y));
-        let p = p0 * b.x + p1 * b.y + p2 * b.z;
-        lambertian_emission(
-            p,
-            self.normals[index],
-            self.radiance,
-            self.total_area,
-            u_dir,
-        )
+        let (p, n) = self.sample_point(u_point);
+        lambertian_emission(p, n, self.radiance, self.total_area, u_dir)
     }
 
     /// Emitted power (W, mean over channels): π · area · radiance for a one-sided Lambertian emitter.
@@ -105,7 +112,100 @@ impl MeshAreaLight {
     }
 }
 
+/// Two triangles that together are the parallelogram `corner + u · edge_u + v · edge_v`,
+/// u, v ∈ [0, 1], facing one way.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Parallelogram {
+    corner: Vec3,
+    edge_u: Vec3,
+    edge_v: Vec3,
+    /// The triangles' common unit normal.
+    normal: Vec3,
+}
+
+impl Parallelogram {
+    /// The parallelogram `triangles` (with unit `normals`) make, if they are two triangles facing
+    /// the same way that share a diagonal (two corners with identical coordinates) and whose
+    /// other corners mirror each other across its midpoint (within 10⁻⁶ of the size).
+    fn of(triangles: &[[Vec3; 3]], normals: &[Vec3]) -> Option<Self> {
+        let ([first, second], [n0, n1]) = (triangles, normals) else {
+            return None;
+        };
+        if *n0 == Vec3::ZERO || n0.dot(*n1) < 1.0 - 1e-6 {
+            return None;
+        }
+        let shared: Vec<Vec3> = first
+            .iter()
+            .copied()
+            .filter(|p| second.contains(p))
+            .collect();
+        let [a, b] = shared[..] else {
+            return None;
+        };
+        let own = |t: &[Vec3; 3]| t.iter().copied().find(|p| *p != a && *p != b);
+        let (corner, opposite) = (own(first)?, own(second)?);
+        let size = (a - corner).length() + (b - corner).length();
+        if (corner + opposite - a - b).length() > 1e-6 * size {
+            return None;
+        }
+        Some(Self {
+            corner,
+            edge_u: a - corner,
+            edge_v: b - corner,
+            normal: *n0,
+        })
+    }
+}
+
 fn triangle_area(t: &[Vec3; 3]) -> f32 {
     let area = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
     if area.is_finite() { area } else { 0.0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn light(triangles: Vec<[Vec3; 3]>) -> MeshAreaLight {
+        MeshAreaLight::new(triangles, Vec3::ONE).expect("has area")
+    }
+
+    #[test]
+    fn two_triangles_sharing_a_diagonal_are_sampled_as_a_parallelogram() {
+        let [o, x, y] = [Vec3::new(1.0, 2.0, 3.0), Vec3::X, Vec3::new(0.5, 0.0, 2.0)];
+        let quad = light(vec![[o, o + x, o + x + y], [o + x + y, o + y, o]]);
+        let expected = Parallelogram {
+            corner: o + x,
+            edge_u: o - (o + x),
+            edge_v: o + x + y - (o + x),
+            normal: x.cross(y).normalize(),
+        };
+        assert_eq!(quad.parallelogram, Some(expected));
+        // Its corners come from the corners of [0, 1)².
+        let (p, n) = quad.sample_point(Vec2::ZERO);
+        assert_eq!((p, n), (o + x, expected.normal));
+    }
+
+    #[test]
+    fn other_pairs_are_sampled_by_triangle() {
+        let [o, x, y] = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        // A kite: the second triangle's free corner does not mirror the first's.
+        assert!(
+            light(vec![[o, x, y], [x, x + 2.0 * y, y]])
+                .parallelogram
+                .is_none()
+        );
+        // The second triangle wound the other way faces the other way.
+        assert!(
+            light(vec![[o, x, y], [x, y, x + y]])
+                .parallelogram
+                .is_none()
+        );
+        // Two triangles that share one corner only.
+        assert!(
+            light(vec![[o, x, y], [x, 2.0 * x, x + y]])
+                .parallelogram
+                .is_none()
+        );
+    }
 }
