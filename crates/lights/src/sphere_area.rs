@@ -6,7 +6,7 @@ use crate::emission::{EmissionSample, lambertian_emission};
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Vec2, Vec3};
 use sampling::Frame;
-use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
+use sampling::warp::{sample_uniform_sphere, sin_cos_turn, uniform_sphere_pdf};
 use std::f32::consts::{PI, TAU};
 
 /// Below this sin²θ_max (about 1.5°) cone angles are computed by series expansion, since
@@ -62,7 +62,7 @@ impl SphereAreaLight {
         let cos_alpha =
             sin2_theta / sin_max + cos_theta * (1.0 - sin2_theta / sin2_max).max(0.0).sqrt();
         let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
-        let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
+        let (sin_phi, cos_phi) = sin_cos_turn(u.y);
         let axis = Frame::from_normal(-to_center / dc);
         let n_light = axis
             .to_world(Vec3::new(

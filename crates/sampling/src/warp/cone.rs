@@ -1,5 +1,6 @@
 //! Cones of directions around +z, sampled uniformly by solid angle.
 
+use super::turn::sin_cos_turn;
 use super::{azimuth_fraction, safe_sqrt};
 use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
@@ -10,7 +11,7 @@ use std::f32::consts::TAU;
 pub fn sample_uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
     let cos_theta = 1.0 - u.x * (1.0 - cos_theta_max);
     let sin_theta = safe_sqrt(1.0 - cos_theta * cos_theta);
-    let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
+    let (sin_phi, cos_phi) = sin_cos_turn(u.y);
     Vec3::new(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta)
 }
 

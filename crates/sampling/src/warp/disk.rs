@@ -1,5 +1,6 @@
 //! The unit disc, sampled uniformly by Shirley and Chiu's concentric map (low distortion).
 
+use super::turn::sin_cos_quarter;
 use glam::Vec2;
 use std::f32::consts::{FRAC_1_PI, FRAC_PI_4, PI};
 
@@ -19,20 +20,6 @@ pub fn sample_concentric_disk(u: Vec2) -> Vec2 {
         let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (offset.x / offset.y));
         offset.y * Vec2::new(sin, cos)
     }
-}
-
-/// sin x and cos x for |x| ≤ π/4 by their Taylor polynomials to x⁷ and x⁸, whose truncation
-/// errors there (below 3.2·10⁻⁷ and 2.5·10⁻⁸) are about float rounding: several times faster
-/// than the general `sin_cos`, which must reduce its argument first.
-#[inline]
-fn sin_cos_quarter(x: f32) -> (f32, f32) {
-    let x2 = x * x;
-    // Products with reciprocal constants: a division by 6.0 would not be turned into one.
-    let sin = x * (1.0 - x2 * (1.0 / 6.0) * (1.0 - x2 * (1.0 / 20.0) * (1.0 - x2 * (1.0 / 42.0))));
-    let cos = 1.0
-        - x2 * 0.5
-            * (1.0 - x2 * (1.0 / 12.0) * (1.0 - x2 * (1.0 / 30.0) * (1.0 - x2 * (1.0 / 56.0))));
-    (sin, cos)
 }
 
 /// Density of [`sample_concentric_disk`] per unit area: 1 / π inside the unit disc.
@@ -63,20 +50,4 @@ pub fn invert_concentric_disk(p: Vec2) -> Vec2 {
         Vec2::new(r * (phi - 6.0 * FRAC_PI_4) / FRAC_PI_4, -r)
     };
     ((offset + Vec2::ONE) * 0.5).clamp(Vec2::ZERO, Vec2::ONE)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn quarter_sin_cos_matches_the_library_within_float_rounding() {
-        for i in 0..=10_000 {
-            let x = (i as f32 / 5_000.0 - 1.0) * FRAC_PI_4;
-            let (sin, cos) = sin_cos_quarter(x);
-            let (lib_sin, lib_cos) = x.sin_cos();
-            assert!((sin - lib_sin).abs() < 4e-7, "sin {x}: {sin} vs {lib_sin}");
-            assert!((cos - lib_cos).abs() < 2e-7, "cos {x}: {cos} vs {lib_cos}");
-        }
-    }
 }

@@ -1,15 +1,16 @@
 //! The upper (z ≥ 0) unit hemisphere, sampled uniformly or proportional to cos θ.
 
+use super::turn::sin_cos_turn;
 use super::{azimuth_fraction, safe_sqrt};
 use glam::{Vec2, Vec3};
-use std::f32::consts::{FRAC_1_PI, TAU};
+use std::f32::consts::FRAC_1_PI;
 
 /// A direction uniform over the upper hemisphere by solid angle: cos θ = u.x, φ = 2π u.y.
 #[inline]
 pub fn sample_uniform_hemisphere(u: Vec2) -> Vec3 {
     let z = u.x;
     let r = safe_sqrt(1.0 - z * z);
-    let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
+    let (sin_phi, cos_phi) = sin_cos_turn(u.y);
     Vec3::new(r * cos_phi, r * sin_phi, z)
 }
 
@@ -30,7 +31,7 @@ pub fn invert_uniform_hemisphere(w: Vec3) -> Vec2 {
 #[inline]
 pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
     let r = u.x.sqrt();
-    let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
+    let (sin_phi, cos_phi) = sin_cos_turn(u.y);
     Vec3::new(r * cos_phi, r * sin_phi, safe_sqrt(1.0 - u.x))
 }
 

@@ -9,6 +9,7 @@ mod disk;
 mod hemisphere;
 mod sphere;
 mod triangle;
+mod turn;
 
 pub use cone::{invert_uniform_cone, sample_uniform_cone, uniform_cone_pdf};
 pub use disk::{concentric_disk_pdf, invert_concentric_disk, sample_concentric_disk};
@@ -18,6 +19,7 @@ pub use hemisphere::{
 };
 pub use sphere::{invert_uniform_sphere, sample_uniform_sphere, uniform_sphere_pdf};
 pub use triangle::{invert_uniform_triangle, sample_uniform_triangle, uniform_triangle_pdf};
+pub use turn::sin_cos_turn;
 
 use std::f32::consts::TAU;
 
