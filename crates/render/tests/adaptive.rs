@@ -16,7 +16,7 @@ const SIZE: u32 = 24;
 const ALPHA: f64 = 0.01;
 const REQUIRED_PASS_FRACTION: f64 = 0.9975;
 const ORACLE_SEED: u32 = 1;
-const ADAPTIVE_SEED: u32 = 2;
+const ADAPTIVE_SEED: u32 = 3;
 
 fn check(name: &str, adaptive_spp: u32, oracle_spp: u32) {
     let scene = load_file(&scenes_dir().join(name), &[], SIZE, SIZE);
