@@ -16,13 +16,16 @@
 //! Each light path stands for one pixel sample: with `L` paths for an `N`-pixel image, a pixel's
 //! value gains `N / L` times the sum of the paths' contributions to it (see `render::film`).
 //!
-//! Sampler dimensions, in order: light choice (1D), point on the light (2D), emitted direction
-//! (2D), then per vertex the BSDF lobe (1D) and direction (2D), and roulette (1D) with roulette.
+//! Sampler dimensions, in order, only those the scene needs (as the path tracer's): light choice
+//! (1D, with more than one area light), point on the light (2D), emitted direction (2D), then per
+//! vertex the BSDF lobe (1D, when some material chooses a lobe) and direction (2D), and roulette
+//! (1D, with roulette from its start depth on).
 
 use crate::{PathSettings, RayTally, RussianRoulette, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::Light;
+use materials::Bsdf;
 use sampling::Sampler;
 use sampling::distribution::CdfTable;
 
@@ -52,6 +55,8 @@ pub struct LightTracer {
     max_depth: u32,
     /// Roulette on the light paths' bounces, as the path tracer's.
     russian_roulette: Option<RussianRoulette>,
+    /// Whether some material draws a number to choose its lobe.
+    draws_lobe_choice: bool,
 }
 
 impl LightTracer {
@@ -78,6 +83,7 @@ impl LightTracer {
                 .max_depth
                 .unwrap_or(crate::reference::UNBOUNDED_DEPTH_CAP),
             russian_roulette: settings.russian_roulette,
+            draws_lobe_choice: world.materials().iter().any(Bsdf::uses_lobe_choice),
         })
     }
 
@@ -92,7 +98,11 @@ impl LightTracer {
         tally: &mut impl RayTally,
         splat: &mut impl FnMut(Vec2, Vec3),
     ) {
-        let u_choice = sampler.next_1d();
+        let u_choice = if self.lights.len() > 1 {
+            sampler.next_1d()
+        } else {
+            0.5
+        };
         let u_point = sampler.next_2d();
         let u_dir = sampler.next_2d();
         let (chosen, pmf, _) = self.selection.sample(u_choice);
@@ -121,7 +131,11 @@ impl LightTracer {
             if vertex + 1 >= self.max_depth {
                 return;
             }
-            let u_lobe = sampler.next_1d();
+            let u_lobe = if self.draws_lobe_choice {
+                sampler.next_1d()
+            } else {
+                0.5
+            };
             let u_bounce = sampler.next_2d();
             let Some(bounce) = surface.bsdf.sample(wo, u_lobe, u_bounce) else {
                 return;
@@ -140,16 +154,16 @@ impl LightTracer {
             let factor = bounce.f * (bounce.wi.z.abs() / bounce.pdf_solid_angle * adjoint);
             weight *= factor;
             throughput *= factor;
-            if let Some(roulette) = self.russian_roulette {
+            if let Some(roulette) = self.russian_roulette
+                && vertex >= roulette.start_depth
+            {
                 let u_survive = sampler.next_1d();
-                if vertex >= roulette.start_depth {
-                    let survival = throughput.max_element().clamp(0.0, 1.0);
-                    if u_survive >= survival {
-                        return;
-                    }
-                    weight /= survival;
-                    throughput /= survival;
+                let survival = throughput.max_element().clamp(0.0, 1.0);
+                if u_survive >= survival {
+                    return;
                 }
+                weight /= survival;
+                throughput /= survival;
             }
             if weight == Vec3::ZERO || !weight.is_finite() {
                 return;
