@@ -1,0 +1,135 @@
+//! The path tracer draws the sampler dimensions its documentation lists, and only those the scene
+//! needs: per vertex the light choice (1D) only with more than one light, the light point (2D),
+//! the BSDF lobe (1D) only when some material chooses a lobe (a dielectric), the BSDF direction
+//! (2D), and the roulette number (1D) only from roulette's start depth. Every path's sequence of
+//! draws must be a prefix of that per-vertex pattern repeated; a path may stop anywhere in it.
+
+mod common;
+
+use common::{load_file, mis_power, scenes_dir};
+use glam::{UVec2, Vec2};
+use integrators::{PathIntegrator, RayCounters, RussianRoulette};
+use sampling::Sampler;
+use sampling::sampler::IndependentSampler;
+
+/// Where roulette starts in these tests (vertices 1 and 2 draw no roulette number).
+const ROULETTE_START: u32 = 3;
+
+/// A sampler that records the width of every draw (1 or 2) and otherwise passes it on.
+struct Recording {
+    inner: IndependentSampler,
+    draws: Vec<u8>,
+}
+
+impl Sampler for Recording {
+    fn start_pixel_sample(&mut self, pixel: UVec2, sample_index: u32) {
+        self.inner.start_pixel_sample(pixel, sample_index);
+        self.draws.clear();
+    }
+
+    fn next_1d(&mut self) -> f32 {
+        self.draws.push(1);
+        self.inner.next_1d()
+    }
+
+    fn next_2d(&mut self) -> Vec2 {
+        self.draws.push(2);
+        self.inner.next_2d()
+    }
+}
+
+/// The draws of vertex `depth` (from 1) as the documentation lists them.
+fn vertex_pattern(depth: u32, light_choice: bool, lobe_choice: bool) -> Vec<u8> {
+    let mut draws = Vec::new();
+    if light_choice {
+        draws.push(1);
+    }
+    draws.push(2);
+    if lobe_choice {
+        draws.push(1);
+    }
+    draws.push(2);
+    if depth >= ROULETTE_START {
+        draws.push(1);
+    }
+    draws
+}
+
+/// Traces 16 × 16 pixels × 4 paths of `name` and checks every path's draws against the pattern;
+/// returns the longest sequence seen, so callers can check that roulette was reached.
+fn check(name: &str, light_choice: bool, lobe_choice: bool) -> usize {
+    let scene = load_file(&scenes_dir().join(name), &[], 16, 16);
+    let settings = integrators::PathSettings {
+        russian_roulette: Some(RussianRoulette {
+            start_depth: ROULETTE_START,
+        }),
+        ..mis_power(common::max_depth(&scene), false)
+    };
+    let depth = settings.max_depth.unwrap_or(64);
+    let expected: Vec<u8> = (1..=depth)
+        .flat_map(|d| vertex_pattern(d, light_choice, lobe_choice))
+        .collect();
+    let integrator = PathIntegrator::new(&scene.world, settings);
+    let mut sampler = Recording {
+        inner: IndependentSampler::new(5, 4),
+        draws: Vec::new(),
+    };
+    let mut counters = RayCounters::default();
+    let mut longest = 0;
+    for y in 0..16 {
+        for x in 0..16 {
+            for index in 0..4 {
+                let pixel = UVec2::new(x, y);
+                sampler.start_pixel_sample(pixel, index);
+                let ray = scene
+                    .camera
+                    .generate_ray(pixel.as_vec2() + Vec2::splat(0.5), Vec2::ZERO);
+                integrator.radiance(&scene.world, ray, &mut sampler, &mut counters);
+                let draws = &sampler.draws;
+                assert!(
+                    draws.len() <= expected.len() && expected.starts_with(draws),
+                    "{name}: pixel {pixel}, sample {index} (seed 5) drew {draws:?}, \
+                     not a prefix of {expected:?}"
+                );
+                longest = longest.max(draws.len());
+            }
+        }
+    }
+    longest
+}
+
+/// How many draws a path makes through vertex `depth` if it goes on past it.
+fn draws_through(depth: u32, light_choice: bool, lobe_choice: bool) -> usize {
+    (1..=depth)
+        .map(|d| vertex_pattern(d, light_choice, lobe_choice).len())
+        .sum()
+}
+
+#[test]
+fn one_light_and_no_dielectric_draw_only_the_light_point_and_direction() {
+    let longest = check("cbox.xml", false, false);
+    assert!(
+        longest >= draws_through(ROULETTE_START, false, false),
+        "no path of cbox reached roulette"
+    );
+}
+
+#[test]
+fn a_dielectric_adds_the_lobe_number() {
+    let longest = check("cbox-glass.xml", false, true);
+    assert!(
+        longest >= draws_through(ROULETTE_START, false, true),
+        "no path of cbox-glass reached roulette"
+    );
+}
+
+#[test]
+fn many_lights_add_the_light_choice_number() {
+    // The scene's depth is 3: vertices 1 and 2 draw, vertex 3 only gathers emission.
+    let longest = check("manylights.xml", true, false);
+    assert_eq!(
+        longest,
+        draws_through(2, true, false),
+        "no path of manylights drew at its second vertex"
+    );
+}
