@@ -31,6 +31,14 @@ impl RayCounters {
         self.rays += other.rays;
         self.shadow_rays += other.shadow_rays;
     }
+
+    /// The rays counted since `earlier` counts of the same tally.
+    pub fn since(self, earlier: RayCounters) -> RayCounters {
+        RayCounters {
+            rays: self.rays - earlier.rays,
+            shadow_rays: self.shadow_rays - earlier.shadow_rays,
+        }
+    }
 }
 
 impl RayTally for RayCounters {

@@ -6,6 +6,7 @@ mod counters;
 mod delta_lights;
 mod light_choice;
 mod light_tracer;
+mod optional_draw;
 pub mod path;
 mod ray_log;
 pub mod reference;

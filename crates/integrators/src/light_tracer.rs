@@ -21,11 +21,11 @@
 //! vertex the BSDF lobe (1D, when some material chooses a lobe) and direction (2D), and roulette
 //! (1D, with roulette from its start depth on).
 
+use crate::optional_draw::next_1d_if;
 use crate::{PathSettings, RayTally, RussianRoulette, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::Light;
-use materials::Bsdf;
 use sampling::Sampler;
 use sampling::distribution::CdfTable;
 
@@ -83,7 +83,7 @@ impl LightTracer {
                 .max_depth
                 .unwrap_or(crate::reference::UNBOUNDED_DEPTH_CAP),
             russian_roulette: settings.russian_roulette,
-            draws_lobe_choice: world.materials().iter().any(Bsdf::uses_lobe_choice),
+            draws_lobe_choice: world.has_lobe_choice(),
         })
     }
 
@@ -98,11 +98,7 @@ impl LightTracer {
         tally: &mut impl RayTally,
         splat: &mut impl FnMut(Vec2, Vec3),
     ) {
-        let u_choice = if self.lights.len() > 1 {
-            sampler.next_1d()
-        } else {
-            0.5
-        };
+        let u_choice = next_1d_if(sampler, self.lights.len() > 1);
         let u_point = sampler.next_2d();
         let u_dir = sampler.next_2d();
         let (chosen, pmf, _) = self.selection.sample(u_choice);
@@ -110,7 +106,8 @@ impl LightTracer {
         let Some(emitted) = light.sample_emission(u_point, u_dir) else {
             return;
         };
-        let mut weight = emitted.weight / pmf;
+        // The light the path carries is `emitted_weight * throughput`.
+        let emitted_weight = emitted.weight / pmf;
         let mut throughput = Vec3::ONE;
         let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.dir);
         // The vertex about to be found, counted from the light (1 = the first hit). A connection
@@ -126,16 +123,13 @@ impl LightTracer {
                 && !surface.bsdf.is_delta()
                 && let Some(camera) = connect(surface.hit.p)
             {
+                let weight = emitted_weight * throughput;
                 connect_to_camera(world, &surface, towards_light, camera, tally, weight, splat);
             }
             if vertex + 1 >= self.max_depth {
                 return;
             }
-            let u_lobe = if self.draws_lobe_choice {
-                sampler.next_1d()
-            } else {
-                0.5
-            };
+            let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
             let u_bounce = sampler.next_2d();
             let Some(bounce) = surface.bsdf.sample(wo, u_lobe, u_bounce) else {
                 return;
@@ -152,7 +146,6 @@ impl LightTracer {
             let adjoint = (bounce.eta * bounce.eta)
                 * shading_normal_correction(wo.z, bounce.wi.z, ng, towards_light, outgoing);
             let factor = bounce.f * (bounce.wi.z.abs() / bounce.pdf_solid_angle * adjoint);
-            weight *= factor;
             throughput *= factor;
             if let Some(roulette) = self.russian_roulette
                 && vertex >= roulette.start_depth
@@ -162,9 +155,9 @@ impl LightTracer {
                 if u_survive >= survival {
                     return;
                 }
-                weight /= survival;
                 throughput /= survival;
             }
+            let weight = emitted_weight * throughput;
             if weight == Vec3::ZERO || !weight.is_finite() {
                 return;
             }

@@ -13,6 +13,7 @@
 
 use crate::delta_lights::delta_lights;
 use crate::light_choice::choose_light;
+use crate::optional_draw::next_1d_if;
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{LightSelectionMode, Mis, PathSettings};
 use crate::uniform_direction::{sample_uniform_direction, uniform_direction_pdf};
@@ -20,7 +21,6 @@ use crate::{RayTally, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
-use materials::Bsdf;
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
 
@@ -72,7 +72,7 @@ impl PathIntegrator {
             settings,
             selector: LightSelector::new(world.lights(), selection),
             draws_light_choice: world.lights().len() > 1,
-            draws_lobe_choice: world.materials().iter().any(Bsdf::uses_lobe_choice),
+            draws_lobe_choice: world.has_lobe_choice(),
         }
     }
 
@@ -143,11 +143,7 @@ impl PathIntegrator {
             let wo = surface.frame.to_local(-ray.dir);
 
             if settings.sample_lights {
-                let u_choice = if self.draws_light_choice {
-                    sampler.next_1d()
-                } else {
-                    0.5
-                };
+                let u_choice = next_1d_if(sampler, self.draws_light_choice);
                 let u_point = sampler.next_2d();
                 if !surface.bsdf.is_delta() {
                     radiance += throughput
@@ -157,11 +153,7 @@ impl PathIntegrator {
                 radiance += throughput * delta_lights(world, &surface, wo, counters);
             }
 
-            let u_lobe = if self.draws_lobe_choice {
-                sampler.next_1d()
-            } else {
-                0.5
-            };
+            let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
             let u_dir = sampler.next_2d();
             let Some(next) = self.next_direction(&surface, wo, u_lobe, u_dir) else {
                 break;

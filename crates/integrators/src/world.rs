@@ -110,6 +110,12 @@ impl World {
         &self.materials
     }
 
+    /// Whether some material chooses its lobe by a random number ([`Bsdf::uses_lobe_choice`]:
+    /// a dielectric), so the integrators draw one at every vertex.
+    pub fn has_lobe_choice(&self) -> bool {
+        self.materials.iter().any(Bsdf::uses_lobe_choice)
+    }
+
     /// The acceleration structure over all shapes.
     pub fn accel(&self) -> &Accel {
         &self.accel

@@ -119,14 +119,6 @@ pub struct Allocation {
 }
 
 impl Allocation {
-    /// Every pixel the same share (what rendering without adaptivity does).
-    pub fn uniform(width: u32, height: u32) -> Self {
-        Self {
-            width,
-            shares: vec![1.0; width as usize * height as usize],
-        }
-    }
-
     /// The allocation that minimises relative MSE for the time spent according to the `pilot`
     /// film and the `costs` of its samples (see the module documentation). A pilot with no
     /// variance anywhere gives the uniform allocation.
@@ -137,8 +129,7 @@ impl Allocation {
             .iter()
             .map(|p| {
                 let mean = p.mean().as_dvec3();
-                let variance = p.variance_of_mean().as_dvec3() * f64::from(p.count);
-                let relative = variance / (mean * mean + RELMSE_EPSILON);
+                let relative = p.sample_variance() / (mean * mean + RELMSE_EPSILON);
                 (relative.x + relative.y + relative.z) / 3.0
             })
             .collect();
@@ -223,6 +214,14 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
+    /// Every pixel of a `width × height` image the same share.
+    fn uniform(width: u32, height: u32) -> Allocation {
+        Allocation {
+            width,
+            shares: vec![1.0; width as usize * height as usize],
+        }
+    }
+
     #[test]
     fn shares_follow_the_relative_standard_deviation() {
         // Left half: relative variance 4x the right half's, so twice the samples.
@@ -262,7 +261,7 @@ mod tests {
         }
         assert_eq!(
             Allocation::from_pilot(&pilot, &PixelCosts::new(3, 2)),
-            Allocation::uniform(3, 2)
+            uniform(3, 2)
         );
     }
 

@@ -45,16 +45,23 @@ impl PixelSum {
         }
     }
 
-    /// The estimated variance of the mean, `s² / n` with `s²` the unbiased sample variance of the
-    /// samples, per channel; zero with fewer than two samples.
+    /// The unbiased sample variance `s²` of the samples (the variance of one sample), per
+    /// channel; zero with fewer than two samples.
+    pub fn sample_variance(&self) -> DVec3 {
+        if self.count < 2 {
+            return DVec3::ZERO;
+        }
+        let n = f64::from(self.count);
+        ((self.sum_sq - self.sum * self.sum / n) / (n - 1.0)).max(DVec3::ZERO)
+    }
+
+    /// The estimated variance of the mean, `s² / n` ([`Self::sample_variance`] over the sample
+    /// count), per channel; zero with fewer than two samples.
     pub fn variance_of_mean(&self) -> Vec3 {
         if self.count < 2 {
             return Vec3::ZERO;
         }
-        let n = f64::from(self.count);
-        let sample_variance =
-            ((self.sum_sq - self.sum * self.sum / n) / (n - 1.0)).max(DVec3::ZERO);
-        (sample_variance / n).as_vec3()
+        (self.sample_variance() / f64::from(self.count)).as_vec3()
     }
 }
 

@@ -255,8 +255,8 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         (costs.is_none() && light_tracer.is_some()).then_some(&trace_light_path);
     let has_lens = camera.has_lens();
     render_with_light_paths(
-        scene.desc.film.width,
-        scene.desc.film.height,
+        width,
+        height,
         &plan.budget,
         options,
         || Worker {
@@ -282,14 +282,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
                 Integrator::Path(path) => path.radiance(world, ray, sampler, &mut worker.tally),
             };
             if let (Some(costs), Some(before)) = (costs, rays_before) {
-                let after = worker.tally.counts();
-                costs.add(
-                    pixel,
-                    RayCounters {
-                        rays: after.rays - before.rays,
-                        shadow_rays: after.shadow_rays - before.shadow_rays,
-                    },
-                );
+                costs.add(pixel, worker.tally.counts().since(before));
             }
             radiance
         },

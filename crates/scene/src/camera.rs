@@ -105,7 +105,7 @@ impl Camera {
         if !(film.cmpge(Vec2::ZERO).all() && film.cmplt(self.resolution).all()) {
             return None;
         }
-        let eye = self.to_world.transform_point3(Vec3::ZERO);
+        let eye = self.to_world.w_axis.truncate();
         let distance_squared = (p - eye).length_squared();
         let cos_theta = local.z / local.length();
         let plane_area = 4.0 * self.tan_half_fov.x * self.tan_half_fov.y;
