@@ -135,11 +135,15 @@ impl RayShear {
     #[inline(always)]
     pub fn any4(&self, tri: &Triangle4, used: u32, t_max: f32) -> bool {
         let lanes = self.lanes(tri, used, t_max);
-        lanes.hit != 0
-            || (0..4).any(|lane| {
-                lanes.redo & (1 << lane) != 0
-                    && self.intersect(&tri.triangle(lane), t_max).is_some()
-            })
+        lanes.hit != 0 || (lanes.redo != 0 && self.any_redone(tri, lanes.redo, t_max))
+    }
+
+    /// Whether the single-triangle test finds a hit in one of the lanes `redo` (a bitmask).
+    #[cold]
+    fn any_redone(&self, tri: &Triangle4, redo: u32, t_max: f32) -> bool {
+        (0..4).any(|lane| {
+            redo & (1 << lane) != 0 && self.intersect(&tri.triangle(lane), t_max).is_some()
+        })
     }
 
     /// Every step of [`RayShear::intersect`] up to its double-precision cases, on the lanes
