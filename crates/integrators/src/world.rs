@@ -28,9 +28,11 @@ pub struct World {
 pub struct SurfaceHit<'w> {
     /// The geometric hit record.
     pub hit: Hit,
-    /// Shading frame around the shading normal `hit.ns`.
+    /// Shading frame around the shading normal `hit.ns`; mirrored (normal `-hit.ns`) when the
+    /// ray sees the back of a [`materials::TwoSided`] surface, so `bsdf` sees directions on
+    /// its upper side.
     pub frame: Frame,
-    /// The surface's BSDF.
+    /// The BSDF the ray sees: a [`materials::TwoSided`] is resolved to the side facing the ray.
     pub bsdf: &'w Bsdf,
     /// Index into [`World::lights`] when the surface emits.
     pub light: Option<u32>,
@@ -127,10 +129,18 @@ impl World {
         tally.closest_ray(ray);
         let hit = self.accel.intersect(ray, f32::INFINITY)?;
         let shape = hit.shape as usize;
+        let frame = Frame::from_normal(hit.ns);
+        let (bsdf, frame) = match &self.materials[self.shape_material[shape] as usize] {
+            Bsdf::TwoSided(two_sided) => match two_sided.facing(frame.to_local(-ray.dir)) {
+                (side, true) => (side, frame.mirrored()),
+                (side, false) => (side, frame),
+            },
+            bsdf => (bsdf, frame),
+        };
         Some(SurfaceHit {
             hit,
-            frame: Frame::from_normal(hit.ns),
-            bsdf: &self.materials[self.shape_material[shape] as usize],
+            frame,
+            bsdf,
             light: self.shape_light[shape],
         })
     }

@@ -84,21 +84,26 @@ impl Bsdf {
     }
 
     /// Whether every lobe is a delta (mirror, smooth dielectric): then `eval` and
-    /// `pdf_solid_angle` are always 0 and light sampling at this surface is pointless.
+    /// `pdf_solid_angle` are always 0 and light sampling at this surface is pointless. A
+    /// [`TwoSided`] is delta only when both sides are; integrators resolve it to the side a ray
+    /// sees ([`TwoSided::facing`]) before asking.
     #[inline]
     pub fn is_delta(&self) -> bool {
         match self {
             Self::Conductor(_) | Self::Dielectric(_) => true,
             Self::Diffuse(_) | Self::RoughConductor(_) => false,
-            Self::TwoSided(b) => b.inner().is_delta(),
+            Self::TwoSided(b) => b.front().is_delta() && b.back().is_delta(),
         }
     }
 
     /// Whether at least one lobe is a delta, so some samples have `is_delta` set. Equal to
-    /// [`Self::is_delta`] for the current BSDFs, which have no mixed delta/non-delta lobes.
+    /// [`Self::is_delta`] except for a [`TwoSided`] with a delta BSDF on one side only.
     #[inline]
     pub fn has_delta_lobe(&self) -> bool {
-        self.is_delta()
+        match self {
+            Self::TwoSided(b) => b.front().has_delta_lobe() || b.back().has_delta_lobe(),
+            _ => self.is_delta(),
+        }
     }
 
     /// Whether [`Self::sample`] uses its `u_lobe` number (to choose between reflection and
@@ -108,7 +113,7 @@ impl Bsdf {
         match self {
             Self::Dielectric(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
-            Self::TwoSided(b) => b.inner().uses_lobe_choice(),
+            Self::TwoSided(b) => b.front().uses_lobe_choice() || b.back().uses_lobe_choice(),
         }
     }
 
@@ -117,21 +122,22 @@ impl Bsdf {
         match self {
             Self::Dielectric(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
-            Self::TwoSided(b) => b.inner().has_transmission(),
+            Self::TwoSided(b) => b.front().has_transmission() || b.back().has_transmission(),
         }
     }
 
     /// A rough RGB albedo for heuristics (Russian roulette, choosing techniques), not for
     /// shading: the diffuse reflectance; for conductors the reflectance at normal incidence
     /// (`specular_reflectance` × Fresnel at cos θ = 1, ignoring microfacet shadowing); for a
-    /// dielectric F₀ · `specular_reflectance` + (1 − F₀) · `specular_transmittance`.
+    /// dielectric F₀ · `specular_reflectance` + (1 − F₀) · `specular_transmittance`; for a
+    /// [`TwoSided`] the mean of its two sides.
     pub fn albedo_hint(&self) -> Vec3 {
         match self {
             Self::Diffuse(b) => b.reflectance(),
             Self::Conductor(b) => b.reflectance(1.0),
             Self::RoughConductor(b) => b.normal_reflectance(),
             Self::Dielectric(b) => b.normal_albedo(),
-            Self::TwoSided(b) => b.inner().albedo_hint(),
+            Self::TwoSided(b) => 0.5 * (b.front().albedo_hint() + b.back().albedo_hint()),
         }
     }
 }

@@ -1,68 +1,85 @@
-//! Mitsuba's `twosided`: makes a one-sided reflecting BSDF look the same from both sides.
+//! Mitsuba's `twosided`: one-sided reflecting BSDFs on both sides of a surface, the same one or
+//! a different one per side.
 
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::error::MaterialError;
 use glam::{Vec2, Vec3};
 
-/// Wraps a reflecting BSDF; when `wo` is below the surface, both directions are mirrored to the
-/// upper side (z ↦ −z), evaluated there, and the sampled direction is mirrored back.
+/// A reflecting BSDF on each side of the surface. When `wo` is below the surface (its z has the
+/// sign bit set, as Mitsuba's `mulsign`), the back BSDF is used with both directions mirrored to
+/// the upper side (z ↦ −z), and a sampled direction is mirrored back; otherwise the front BSDF as
+/// it is. With one BSDF for both sides the surface looks the same from either side.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TwoSided {
-    inner: Box<Bsdf>,
+    front: Box<Bsdf>,
+    back: Box<Bsdf>,
 }
 
 impl TwoSided {
-    /// Two-sided version of `inner`; an error if `inner` transmits (a dielectric), which
-    /// Mitsuba also rejects. Wrapping a `TwoSided` again changes nothing.
-    pub fn new(inner: Bsdf) -> Result<Self, MaterialError> {
-        if inner.has_transmission() {
+    /// `bsdf` on both sides; an error if it transmits (a dielectric), which Mitsuba also
+    /// rejects.
+    pub fn new(bsdf: Bsdf) -> Result<Self, MaterialError> {
+        Self::with_sides(bsdf.clone(), bsdf)
+    }
+
+    /// `front` on the side of the normal, `back` on the other; an error if either transmits.
+    pub fn with_sides(front: Bsdf, back: Bsdf) -> Result<Self, MaterialError> {
+        if front.has_transmission() || back.has_transmission() {
             return Err(MaterialError::TransmissiveTwoSided);
         }
         Ok(Self {
-            inner: Box::new(inner),
+            front: Box::new(front),
+            back: Box::new(back),
         })
     }
 
-    /// The wrapped BSDF, which sees only `wo` with z ≥ 0.
-    pub fn inner(&self) -> &Bsdf {
-        &self.inner
+    /// The BSDF on the side of the normal, which sees only `wo` with z ≥ 0.
+    pub fn front(&self) -> &Bsdf {
+        &self.front
     }
 
-    /// `inner.eval` with both directions mirrored when `wo.z < 0`.
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        let (wo, wi) = to_upper_side(wo, wi);
-        self.inner.eval(wo, wi)
+    /// The BSDF on the other side, seen through mirrored directions (z ≥ 0).
+    pub fn back(&self) -> &Bsdf {
+        &self.back
     }
 
-    /// `inner.pdf_solid_angle` with both directions mirrored when `wo.z < 0`.
-    pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let (wo, wi) = to_upper_side(wo, wi);
-        self.inner.pdf_solid_angle(wo, wi)
-    }
-
-    /// `inner.sample` for the mirrored `wo`, the sampled direction mirrored back to `wo`'s side.
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
-        let below = wo.z.is_sign_negative();
-        let wo_upper = if below { flip_z(wo) } else { wo };
-        let mut sample = self.inner.sample(wo_upper, u_lobe, u_dir)?;
-        if below {
-            sample.wi = flip_z(sample.wi);
+    /// The BSDF that `wo` (local frame) sees, and whether directions must be mirrored for it.
+    #[inline]
+    pub fn facing(&self, wo: Vec3) -> (&Bsdf, bool) {
+        if wo.z.is_sign_negative() {
+            (&self.back, true)
+        } else {
+            (&self.front, false)
         }
+    }
+
+    /// The facing BSDF's `eval`, both directions mirrored for the back.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        let (bsdf, mirrored) = self.facing(wo);
+        bsdf.eval(mirror_if(wo, mirrored), mirror_if(wi, mirrored))
+    }
+
+    /// The facing BSDF's `pdf_solid_angle`, both directions mirrored for the back.
+    pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        let (bsdf, mirrored) = self.facing(wo);
+        bsdf.pdf_solid_angle(mirror_if(wo, mirrored), mirror_if(wi, mirrored))
+    }
+
+    /// The facing BSDF's `sample` for the (mirrored) `wo`, the direction mirrored back to `wo`'s
+    /// side.
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        let (bsdf, mirrored) = self.facing(wo);
+        let mut sample = bsdf.sample(mirror_if(wo, mirrored), u_lobe, u_dir)?;
+        sample.wi = mirror_if(sample.wi, mirrored);
         Some(sample)
     }
 }
 
-/// Mitsuba's flip: when `wo.z` is negative (sign bit set, as Mitsuba's `mulsign`), both
-/// directions are mirrored so that `wo` is on the upper side.
-fn to_upper_side(wo: Vec3, wi: Vec3) -> (Vec3, Vec3) {
-    if wo.z.is_sign_negative() {
-        (flip_z(wo), flip_z(wi))
+/// `w` mirrored in the tangent plane when `mirrored`, else `w`.
+fn mirror_if(w: Vec3, mirrored: bool) -> Vec3 {
+    if mirrored {
+        Vec3::new(w.x, w.y, -w.z)
     } else {
-        (wo, wi)
+        w
     }
-}
-
-/// Mirror image of `w` in the tangent plane.
-fn flip_z(w: Vec3) -> Vec3 {
-    Vec3::new(w.x, w.y, -w.z)
 }

@@ -132,6 +132,20 @@ fn two_sided_rough_conductor_from_below_matches_pdf() {
 }
 
 #[test]
+fn two_sided_with_a_rough_back_from_below_matches_pdf() {
+    let front = Bsdf::from(Diffuse::new(Vec3::splat(0.7)));
+    let back = rough_conductor(MicrofacetKind::Beckmann, 0.3, ComplexIor::PERFECT_MIRROR);
+    let bsdf = Bsdf::from(TwoSided::with_sides(front, back).expect("both reflect"));
+    let below = Vec3::new(incidence(60.0).x, 0.0, -incidence(60.0).z);
+    assert_fits(
+        "twosided diffuse / Beckmann 0.3 at 60 degrees below",
+        &bsdf,
+        below,
+        31,
+    );
+}
+
+#[test]
 fn ggx_alpha_005_sampling_matches_pdf() {
     check_rough_conductor(MicrofacetKind::Ggx, ALPHAS[0], 100);
 }

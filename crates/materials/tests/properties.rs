@@ -42,6 +42,16 @@ fn non_delta_bsdfs() -> Vec<(String, Bsdf)> {
             format!("twosided {kind:?} 0.3 gold"),
             two_sided(rough_conductor(kind, 0.3, gold())),
         ));
+        all.push((
+            format!("twosided diffuse / {kind:?} 0.3 gold"),
+            Bsdf::from(
+                TwoSided::with_sides(
+                    Bsdf::from(Diffuse::new(Vec3::new(0.2, 0.5, 0.9))),
+                    rough_conductor(kind, 0.3, gold()),
+                )
+                .expect("both sides reflect"),
+            ),
+        ));
     }
     all
 }
@@ -346,6 +356,45 @@ fn two_sided_mirrors_the_inner_bsdf_below_the_surface() {
     let glass = Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior");
     assert!(TwoSided::new(Bsdf::from(glass)).is_err());
     assert!(two_sided(Bsdf::from(Conductor::new(gold(), Vec3::ONE))).is_delta());
+}
+
+/// Mitsuba's `twosided` with two BSDFs: the front one above the surface, the back one
+/// (mirrored) below; delta only where a delta side is seen.
+#[test]
+fn two_sided_with_two_bsdfs_uses_the_back_one_below_the_surface() {
+    let mut rng = Rng::new(15);
+    let front = Bsdf::from(Diffuse::new(Vec3::new(0.2, 0.5, 0.9)));
+    let back = rough_conductor(MicrofacetKind::Beckmann, 0.2, gold());
+    let bsdf = Bsdf::from(TwoSided::with_sides(front.clone(), back.clone()).expect("reflective"));
+    let flip = |w: Vec3| Vec3::new(w.x, w.y, -w.z);
+    for _ in 0..1000 {
+        let wo = random_upper_direction(&mut rng);
+        let wi = random_upper_direction(&mut rng);
+        assert_eq!(bsdf.eval(wo, wi), front.eval(wo, wi));
+        assert_eq!(bsdf.pdf_solid_angle(wo, wi), front.pdf_solid_angle(wo, wi));
+        assert_eq!(bsdf.eval(flip(wo), flip(wi)), back.eval(wo, wi));
+        assert_eq!(
+            bsdf.pdf_solid_angle(flip(wo), flip(wi)),
+            back.pdf_solid_angle(wo, wi)
+        );
+        let (u_lobe, u_dir) = random_u(&mut rng);
+        assert_eq!(
+            bsdf.sample(flip(wo), u_lobe, u_dir).map(|s| flip(s.wi)),
+            back.sample(wo, u_lobe, u_dir).map(|s| s.wi)
+        );
+        assert_eq!(
+            bsdf.sample(wo, u_lobe, u_dir).map(|s| s.wi),
+            front.sample(wo, u_lobe, u_dir).map(|s| s.wi)
+        );
+    }
+    let mirror = Bsdf::from(Conductor::new(gold(), Vec3::ONE));
+    let mixed = TwoSided::with_sides(front.clone(), mirror.clone()).expect("reflective");
+    assert!(!Bsdf::from(mixed.clone()).is_delta());
+    assert!(Bsdf::from(mixed.clone()).has_delta_lobe());
+    assert_eq!(mixed.facing(Vec3::Z).0, &front);
+    assert_eq!(mixed.facing(Vec3::NEG_Z), (&mirror, true));
+    let glass = Bsdf::from(Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior"));
+    assert!(TwoSided::with_sides(front, glass).is_err());
 }
 
 #[test]

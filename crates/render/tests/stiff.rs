@@ -207,6 +207,39 @@ fn albedo_one_sphere_in_a_white_sky_is_white_for_every_configuration() {
 }
 
 #[test]
+fn back_of_a_two_sided_surface_shows_its_back_bsdf_for_every_configuration() {
+    // Mitsuba's twosided with two BSDFs: a black front and, behind it, a white diffuse (then a
+    // perfect mirror) back. Seen from behind under a uniform white sky the flat back reflects
+    // exactly the sky, so every pixel is 1; the front's BSDF on the back would make it black.
+    let dir = tempfile::tempdir().unwrap();
+    let camera = r#"<lookat origin="0.3, 0.5, -4" target="0, 0, 0" up="0, 1, 0"/>"#;
+    for (name, back) in [
+        (
+            "diffuse",
+            r#"<bsdf type="diffuse"><rgb name="reflectance" value="1"/></bsdf>"#,
+        ),
+        (
+            "mirror",
+            r#"<bsdf type="conductor"><string name="material" value="none"/></bsdf>"#,
+        ),
+    ] {
+        let body = format!(
+            r#"{WHITE_SKY}
+    <shape type="rectangle">
+        <transform name="to_world"><scale value="3"/></transform>
+        <bsdf type="twosided">
+            <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
+            {back}
+        </bsdf>
+    </shape>"#
+        );
+        let xml = scene_xml(-1, false, camera, 40.0, NEAR_CLIP, &body);
+        let scene = load_xml(dir.path(), &format!("twosided-{name}"), &xml, SIZE);
+        every_configuration_is_exact(&scene, &format!("twosided {name} back"), 16, Vec3::ONE);
+    }
+}
+
+#[test]
 fn albedo_zero_furnace_shows_only_emission() {
     // Inside an emitting sphere of albedo 0 every pixel is exactly its radiance.
     let dir = tempfile::tempdir().unwrap();

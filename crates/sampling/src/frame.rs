@@ -26,6 +26,18 @@ impl Frame {
         Self { s, t, n }
     }
 
+    /// The frame mirrored through its tangent plane: the same tangents and the opposite normal
+    /// (left-handed). A vector's local coordinates in it are those in `self` with z negated,
+    /// exactly.
+    #[inline]
+    pub fn mirrored(&self) -> Self {
+        Self {
+            s: self.s,
+            t: self.t,
+            n: -self.n,
+        }
+    }
+
     /// Expresses the world-space vector `v` in this frame.
     #[inline]
     pub fn to_local(&self, v: Vec3) -> Vec3 {

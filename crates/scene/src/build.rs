@@ -183,14 +183,9 @@ fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
         )
         .map_err(|e| e.to_string())?
         .into(),
-        BsdfDesc::TwoSided { front, back } => {
-            if front != back {
-                return Err(
-                    "twosided with two different nested BSDFs is not supported (give one)"
-                        .to_string(),
-                );
-            }
-            Bsdf::TwoSided(TwoSided::new(build_bsdf(front)?).map_err(|e| e.to_string())?)
-        }
+        BsdfDesc::TwoSided { front, back } => Bsdf::TwoSided(
+            TwoSided::with_sides(build_bsdf(front)?, build_bsdf(back)?)
+                .map_err(|e| e.to_string())?,
+        ),
     })
 }
