@@ -148,7 +148,8 @@ fn area_light(shape: &ShapeDesc, radiance: glam::Vec3) -> Option<Light> {
     }
 }
 
-fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
+/// The renderer's BSDF for `desc`, or why it cannot be built.
+pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
     Ok(match desc {
         BsdfDesc::Diffuse { reflectance } => Diffuse::new(*reflectance).into(),
         BsdfDesc::Conductor {

@@ -459,6 +459,15 @@ fn references_and_parameters() {
         "<bsdf type=\"dielectric\">",
         "one-sided reflective",
     );
+    // Positive, but infinite in single precision: rejected where the BSDF is built, and still
+    // reported at its element.
+    expect(
+        "huge_ior.xml",
+        &wrap("<bsdf type=\"dielectric\">\n<float name=\"int_ior\" value=\"1e40\"/>\n</bsdf>"),
+        4,
+        "<bsdf type=\"dielectric\">",
+        "finite positive index of refraction",
+    );
 }
 
 #[test]

@@ -119,11 +119,21 @@ impl<'a> BsdfTable<'a> {
         Ok(index)
     }
 
-    /// Interprets one `<bsdf>` element.
+    /// Interprets one `<bsdf>` element and checks that the renderer can build it, so that a
+    /// value it rejects (an index of refraction too large for single precision) is reported
+    /// with the element's line.
     fn interpret(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
-        if node.plugin == "twosided" {
-            return self.twosided(node);
-        }
+        let bsdf = if node.plugin == "twosided" {
+            self.twosided(node)?
+        } else {
+            self.one_sided(node)?
+        };
+        crate::build::build_bsdf(&bsdf).map_err(|message| node.loc.error(message))?;
+        Ok(bsdf)
+    }
+
+    /// Interprets a `<bsdf>` element other than `twosided`.
+    fn one_sided(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
         super::no_children(node)?;
         let mut params = Params::new(node);
         let bsdf = match node.plugin.as_str() {
