@@ -30,6 +30,7 @@ pub mod diff;
 pub mod driver;
 pub mod film;
 pub mod filter;
+pub mod fingerprint;
 pub mod image;
 pub mod merge;
 pub mod metrics;

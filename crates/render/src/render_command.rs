@@ -8,8 +8,9 @@ use std::time::Instant;
 use crate::cli::RenderArgs;
 use crate::commands::CommandError;
 use crate::driver::{RenderOptions, RenderOutput, ResumePoint};
+use crate::fingerprint::scene_fingerprint;
 use crate::session::{film_filter, render_scene};
-use crate::state::{FORMAT, RenderState, StateHeader, VERSION, fnv1a_hex};
+use crate::state::{FORMAT, RenderState, StateHeader, VERSION};
 use crate::stats::RenderStats;
 use crate::stop::StopSignal;
 use crate::technique::{RenderPlan, plan};
@@ -33,12 +34,15 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
         desc.film.width = width;
         desc.film.height = height;
     }
+    // Only a saved or resumed state needs the scene's fingerprint (it reads every vertex).
+    let scene_hash =
+        (args.state.is_some() || args.resume.is_some()).then(|| scene_fingerprint(&desc));
     let scene = scene::build(desc).map_err(|e| CommandError::BadInput(e.to_string()))?;
     let mut plan = plan(args, &scene.desc, &scene.features);
     let filter =
         film_filter(scene.desc.film.filter).map_err(|e| CommandError::BadInput(e.to_string()))?;
     let identity = Identity {
-        scene_hash: fnv1a_hex(&scene_bytes),
+        scene_hash: scene_hash.unwrap_or_default(),
         settings: settings_text(&plan, &scene.desc),
     };
     let resume = match &args.resume {
@@ -109,7 +113,8 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
     Ok(())
 }
 
-/// What a saved state must match to be resumed: the scene file and the sample-deciding settings.
+/// What a saved state must match to be resumed: the scene's content and the sample-deciding
+/// settings.
 struct Identity {
     scene_hash: String,
     settings: String,
@@ -140,7 +145,8 @@ fn resume_point(
     let header = &state.header;
     if header.scene_hash != identity.scene_hash {
         return Err(CommandError::BadInput(format!(
-            "render state '{}' was saved for a different scene file (hash {}, the scene's is {})",
+            "render state '{}' was saved for a different scene (fingerprint {}, this scene's is {}): \
+             the scene file or a mesh file it reads has changed",
             path.display(),
             header.scene_hash,
             identity.scene_hash

@@ -149,7 +149,7 @@ fn resume_refuses_another_scene_or_other_settings() {
     args.extend(size);
     strata_ok(&args);
     for (scene, extra, expected) in [
-        (&glass, &[][..], "different scene file"),
+        (&glass, &[][..], "different scene"),
         (&cbox, &["--seed", "9"][..], "other settings"),
         (&cbox, &["--integrator", "reference"][..], "other settings"),
     ] {
@@ -165,4 +165,57 @@ fn resume_refuses_another_scene_or_other_settings() {
             "{stderr}"
         );
     }
+}
+
+#[test]
+fn resume_follows_the_mesh_files_not_the_scene_files_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_xml = r#"<scene version="3.0.0">
+    <integrator type="path"/>
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+    </sensor>
+    <emitter type="constant"/>
+    <shape type="obj"><string name="filename" value="quad.obj"/></shape>
+</scene>"#;
+    let quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3\nf 1 3 4\n";
+    let (first, moved) = (dir.path().join("first"), dir.path().join("moved"));
+    for folder in [&first, &moved] {
+        std::fs::create_dir(folder).unwrap();
+        std::fs::write(folder.join("scene.xml"), scene_xml).unwrap();
+        std::fs::write(folder.join("quad.obj"), quad).unwrap();
+    }
+    let (out, state) = (dir.path().join("a.exr"), dir.path().join("a.state"));
+    let render = |folder: &std::path::Path, spp: &str, state_flag: &str| {
+        strata(&[
+            "render",
+            arg(&folder.join("scene.xml")),
+            "--out",
+            arg(&out),
+            "--spp",
+            spp,
+            state_flag,
+            arg(&state),
+        ])
+    };
+    assert_eq!(render(&first, "2", "--state").status.code(), Some(0));
+    // The same content elsewhere continues.
+    let resumed = render(&moved, "4", "--resume");
+    assert_eq!(
+        resumed.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    // One vertex of the mesh moved: the saved samples are of another scene.
+    let changed = quad.replace("v 1 1 0", "v 1 1 0.5");
+    std::fs::write(moved.join("quad.obj"), changed).unwrap();
+    let refused = render(&moved, "4", "--resume");
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("different scene") && stderr.contains("a.state"),
+        "{stderr}"
+    );
 }
