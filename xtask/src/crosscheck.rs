@@ -1,5 +1,6 @@
-//! `cargo xtask crosscheck`: renders scene files with Strata's reference integrator and with
-//! Mitsuba 3, and compares the two images block by block.
+//! `cargo xtask crosscheck`: renders scene files with Strata (its reference integrator unless
+//! `--integrator` names another preset) and with Mitsuba 3, and compares the two images block by
+//! block.
 //!
 //! Each renderer renders [`RENDERS`] times with different seeds. Per pixel, the variance of the
 //! mean of the renders is their sample variance over the number of renders; summing it over an
@@ -33,6 +34,8 @@ pub struct Options {
     pub scenes: Vec<PathBuf>,
     /// Samples per pixel of each of the two renders per renderer.
     pub spp: u32,
+    /// Strata's integrator preset (`strata render --integrator`).
+    pub integrator: String,
     /// Where the images go.
     pub out_dir: PathBuf,
 }
@@ -90,7 +93,7 @@ fn compare(strata: &Path, scene: &Path, options: &Options) -> Result<Outcome, St
             "--out",
             path_str(&out)?,
             "--integrator",
-            "reference",
+            &options.integrator,
             "--spp",
             &spp,
             "--seed",

@@ -8,8 +8,9 @@
 //!   slow ones that `cargo test` skips unless `--quick`), one pass/fail line each with its figures.
 //! - `gains`: what each technique buys on the scene built to show it, one pass/fail line per
 //!   claim of the path integrator's issue (part of the full `check`).
-//! - `crosscheck [--spp N] [SCENE.xml ...]`: Strata's reference integrator against Mitsuba 3,
-//!   block by block (needs `pip install mitsuba`; never run in CI).
+//! - `crosscheck [--spp N] [--integrator PRESET] [SCENE.xml ...]`: Strata (the reference
+//!   integrator unless `--integrator` says otherwise) against Mitsuba 3, block by block (needs
+//!   `pip install mitsuba`; never run in CI).
 //! - `raycast-limit [SCENE] [--spp N] [--threads N] [--runs N]`: render time against the time to
 //!   trace the same rays alone, and the speed-up over one thread.
 //! - `vs-mitsuba [SCENE ...] [--time S] [--runs N] [--variant V] [--strata-flags F]
@@ -25,7 +26,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check [--quick] | \
-     gains | crosscheck [--spp N] [SCENE.xml ...] | raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] | \
+     gains | crosscheck [--spp N] [--integrator PRESET] [SCENE.xml ...] | raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] | \
      vs-mitsuba [SCENE ...] [--time S] [--runs N] [--variant V] [--strata-flags F] [--mitsuba-ref SPP]>";
 
 fn main() -> ExitCode {
@@ -82,6 +83,7 @@ fn build_strata() -> Result<PathBuf, String> {
 
 fn crosscheck(args: &[String]) -> Result<bool, String> {
     let mut spp = 256;
+    let mut integrator = "reference".to_string();
     let mut scenes = Vec::new();
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
@@ -91,6 +93,11 @@ fn crosscheck(args: &[String]) -> Result<bool, String> {
                 .and_then(|v| v.parse().ok())
                 .filter(|&n| n > 0)
                 .ok_or("--spp takes a positive whole number")?;
+        } else if arg == "--integrator" {
+            integrator = rest
+                .next()
+                .ok_or("--integrator takes a preset name (reference, nee, mis, ris, auto)")?
+                .clone();
         } else {
             scenes.push(PathBuf::from(arg));
         }
@@ -110,6 +117,7 @@ fn crosscheck(args: &[String]) -> Result<bool, String> {
         &crosscheck::Options {
             scenes,
             spp,
+            integrator,
             out_dir: workspace_root().join("target/crosscheck"),
         },
     )
