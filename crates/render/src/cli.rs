@@ -122,8 +122,8 @@ pub struct RenderArgs {
     pub adaptive: bool,
     /// Caustics by light tracing: light seen on a diffuse or glossy surface after mirrors or
     /// glass (light → specular → surface → camera) is traced from the lights and connected to
-    /// the camera instead of being found by chance. Needs a pinhole camera, a box filter, a
-    /// delta BSDF and an area light; ignored otherwise. `auto` turns it on where it applies
+    /// the camera instead of being found by chance, splatting into the pixels the filter
+    /// reaches. Needs a pinhole camera, a delta BSDF and an area light; ignored otherwise. `auto` turns it on where it applies
     /// unless --state or --resume is given; with another preset, this flag does. Not with
     /// --state or --resume.
     #[arg(long, conflicts_with_all = ["state", "resume"])]

@@ -211,13 +211,12 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     let (integrator, light_tracer) = match plan.transport {
         Transport::Reference(settings) => (Integrator::Reference(settings), None),
         Transport::Path(mut settings) => {
-            // The camera connection needs a pinhole and splats into one pixel (a box filter).
-            let tracer =
-                if settings.light_tracing && !camera.has_lens() && matches!(filter, Filter::Box) {
-                    LightTracer::new(world, &settings)
-                } else {
-                    None
-                };
+            // The camera connection needs a pinhole.
+            let tracer = if settings.light_tracing && !camera.has_lens() {
+                LightTracer::new(world, &settings)
+            } else {
+                None
+            };
             // Without the tracer the path tracer must keep every path.
             settings.light_tracing = tracer.is_some();
             (
@@ -238,15 +237,14 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         let key = UVec2::new(pixel.x, pixel.y + height);
         worker.sampler.start_pixel_sample(key, sample_index);
         let mut add = |film: Vec2, value: Vec3| {
-            let target = film.floor().as_uvec2();
-            if target.x < width && target.y < height {
-                splats.push((target, value));
-            }
+            filter.for_each_pixel_at(film, width, height, |pixel, weight| {
+                splats.push((pixel, value * weight));
+            });
         };
         tracer.trace(
             world,
             &mut worker.sampler,
-            &|p| camera.connect(p),
+            &|p| camera.connect(p, filter.radius()),
             &mut worker.tally,
             &mut add,
         );

@@ -7,9 +7,7 @@ use clap::Parser;
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
 use sampling::sampler::SamplerKind;
-use scene::{
-    FilterDesc, IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures,
-};
+use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
 
 /// Candidates per RIS light choice in the `ris` preset and in `auto`. Measured on the
 /// many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
@@ -125,7 +123,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             && args.state.is_none()
             && args.resume.is_none();
         settings.light_tracing =
-            (args.light_tracing || auto_traces) && light_tracing_applies(desc, features);
+            (args.light_tracing || auto_traces) && light_tracing_applies(features);
     }
 
     let sampler = match args.sampler {
@@ -199,13 +197,11 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
 }
 
 /// Whether caustics by light tracing can run on the scene and find anything: a pinhole camera
-/// and a box filter (the camera connection splats into one pixel), a delta BSDF to make
-/// caustics and a light with a surface to trace from.
-pub fn light_tracing_applies(desc: &SceneDesc, features: &SceneFeatures) -> bool {
-    !features.has_lens
-        && desc.film.filter == FilterDesc::Box
-        && features.has_delta_bsdfs
-        && features.has_hittable_lights
+/// (the camera connection has no lens sampling), a delta BSDF to make caustics and a light with
+/// a surface to trace from. Any reconstruction filter: a light path splats into every pixel
+/// whose camera samples can reach its film position, weighted by the filter.
+pub fn light_tracing_applies(features: &SceneFeatures) -> bool {
+    !features.has_lens && features.has_delta_bsdfs && features.has_hittable_lights
 }
 
 /// A 64-bit seed from the command line folded into the sampler's 32 bits.

@@ -14,9 +14,11 @@
 mod common;
 
 use common::{Target, film_mean, load_xml, mis_power, render, z_test};
+use glam::UVec2;
 use integrators::PathSettings;
 use render::technique::{Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
+use sampling::ztest::{sidak_alpha, two_sided_threshold};
 
 const SIZE: u32 = 24;
 const ALPHA: f64 = 0.01;
@@ -128,6 +130,186 @@ fn light_traced_caustics_agree_with_the_path_tracer() {
         "image means differ by {:.2}% ({replay})",
         100.0 * difference
     );
+}
+
+/// Light-tracing renders per filter in the wide-filter test, and their samples per pixel.
+const FILTER_RENDERS: u32 = 8;
+const FILTER_RENDER_SPP: u32 = 64;
+/// Block edge of the wide-filter test, in pixels (a few filter radii).
+const FILTER_BLOCK: u32 = 4;
+/// Least design effect of the wide filters' light tracing (see the test).
+const MIN_DESIGN_EFFECT: f64 = 1.2;
+
+/// The same room through Mitsuba's default gaussian filter and a tent of radius 1.5: a light path
+/// splats into every pixel whose camera samples reach its film position, weighted by the
+/// filter's sampling density. Neighbouring pixels then share splats, so a block's variance is
+/// more than the sum of the film's per-pixel estimates: it is scaled by a design effect pooled
+/// over the image, the spread of the block means of independent light-tracing renders against
+/// those estimates (as `cargo xtask crosscheck` does for Mitsuba's splatting). Then per 4 × 4
+/// block and channel a z-test at a family-wise α = 0.01 with Šidák correction, and the image
+/// means within 1%. The design effect itself must exceed 1.2 (measured 1.46 for the gaussian,
+/// 1.89 for the tent): splatting into the containing pixel only, as for the box filter, leaves
+/// neighbours uncorrelated and gives 1.00, which the block test at this size cannot tell from
+/// the filtered image.
+#[test]
+fn light_traced_caustics_agree_with_the_path_tracer_through_wide_filters() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let filters = [
+        ("gaussian", r#"<rfilter type="gaussian"/>"#),
+        (
+            "tent",
+            r#"<rfilter type="tent"><float name="radius" value="1.5"/></rfilter>"#,
+        ),
+    ];
+    for (name, filter) in filters {
+        let xml = SCENE.replace(r#"<rfilter type="box"/>"#, filter);
+        let scene = load_xml(dir.path(), name, &xml, SIZE);
+        let mis = mis_power(common::max_depth(&scene), false);
+        let path = render(
+            &scene,
+            Transport::Path(mis),
+            SamplerKind::Independent,
+            PATH_SPP,
+            PATH_SEED,
+            "path tracer",
+        );
+        let traced: Vec<_> = (0..FILTER_RENDERS)
+            .map(|k| {
+                render(
+                    &scene,
+                    Transport::Path(PathSettings {
+                        light_tracing: true,
+                        ..mis
+                    }),
+                    SamplerKind::Independent,
+                    FILTER_RENDER_SPP,
+                    LIGHT_TRACING_SEED + k,
+                    "light tracing",
+                )
+            })
+            .collect();
+        let replay = format!(
+            "{name} filter: light tracing {FILTER_RENDERS} renders of {FILTER_RENDER_SPP} spp,              seeds {LIGHT_TRACING_SEED}..; path tracing {PATH_SPP} spp seed {PATH_SEED}, {SIZE}x{SIZE}"
+        );
+        let blocks = block_statistics(&path, &traced);
+        let (spread, estimated) = blocks.iter().fold((0.0, 0.0), |(s, e), b| {
+            (s + b.traced_spread, e + b.traced_estimate)
+        });
+        let design_effect = (spread / estimated).max(1.0);
+        let tests = blocks.len();
+        let threshold = two_sided_threshold(sidak_alpha(ALPHA, tests));
+        let (worst, worst_at) = blocks
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                let rounding = 1e-5 * b.path_mean.abs();
+                let variance =
+                    design_effect * b.traced_estimate + b.path_variance + rounding * rounding;
+                (
+                    (b.traced_mean - b.path_mean).abs() / variance.sqrt().max(1e-30),
+                    i,
+                )
+            })
+            .fold((0.0_f64, 0), |acc, z| if z.0 > acc.0 { z } else { acc });
+        let failed = blocks
+            .iter()
+            .filter(|b| {
+                let rounding = 1e-5 * b.path_mean.abs();
+                let variance =
+                    design_effect * b.traced_estimate + b.path_variance + rounding * rounding;
+                (b.traced_mean - b.path_mean).abs() > threshold * variance.sqrt()
+            })
+            .count();
+        let traced_mean = traced.iter().map(film_mean).sum::<f64>() / f64::from(FILTER_RENDERS);
+        let path_mean = film_mean(&path);
+        let difference = (traced_mean - path_mean) / path_mean;
+        println!(
+            "figure: {name} filter: design effect {design_effect:.2}, {failed} of {tests} block-channels beyond |z| {threshold:.2}, worst |z| {worst:.2} (block-channel {worst_at}); image means {traced_mean:.5} and {path_mean:.5} ({:+.2}%)",
+            100.0 * difference
+        );
+        assert!(
+            (tests - failed) as f64 / tests as f64 >= REQUIRED_PASS_FRACTION,
+            "{failed} of {tests} block-channels differ, worst |z| {worst:.2} at block-channel {worst_at} ({replay})"
+        );
+        assert!(
+            difference.abs() < 0.01,
+            "image means differ by {:.2}% ({replay})",
+            100.0 * difference
+        );
+        assert!(
+            spread / estimated > MIN_DESIGN_EFFECT,
+            "design effect {:.2}: light paths' splats are not shared by neighbouring pixels \
+             ({replay})",
+            spread / estimated
+        );
+    }
+}
+
+/// One block-channel of the wide-filter test.
+struct BlockStatistics {
+    path_mean: f64,
+    /// The path tracer's variance of the block mean, from its independent pixels.
+    path_variance: f64,
+    /// The mean over the light-tracing renders of their block means.
+    traced_mean: f64,
+    /// The variance of `traced_mean` from the renders' spread (correlations included).
+    traced_spread: f64,
+    /// The variance of `traced_mean` from the films' per-pixel estimates (as if independent).
+    traced_estimate: f64,
+}
+
+/// Per [`FILTER_BLOCK`]² block and channel, block (row-major) then channel order.
+fn block_statistics(
+    path: &render::film::Film,
+    traced: &[render::film::Film],
+) -> Vec<BlockStatistics> {
+    let pixels_per_block = f64::from(FILTER_BLOCK * FILTER_BLOCK);
+    let block_sum = |film: &render::film::Film, origin: UVec2, c: usize, variance: bool| {
+        let mut sum = 0.0;
+        for dy in 0..FILTER_BLOCK {
+            for dx in 0..FILTER_BLOCK {
+                let pixel = origin + UVec2::new(dx, dy);
+                let value = if variance {
+                    film.pixel_variance(pixel)[c]
+                } else {
+                    film.pixel_value(pixel)[c]
+                };
+                sum += f64::from(value);
+            }
+        }
+        sum
+    };
+    let renders = traced.len() as f64;
+    let mut out = Vec::new();
+    for by in 0..SIZE / FILTER_BLOCK {
+        for bx in 0..SIZE / FILTER_BLOCK {
+            let origin = UVec2::new(bx, by) * FILTER_BLOCK;
+            for c in 0..3 {
+                let means: Vec<f64> = traced
+                    .iter()
+                    .map(|f| block_sum(f, origin, c, false) / pixels_per_block)
+                    .collect();
+                let traced_mean = means.iter().sum::<f64>() / renders;
+                let spread =
+                    means.iter().map(|m| (m - traced_mean).powi(2)).sum::<f64>() / (renders - 1.0);
+                let estimate = traced
+                    .iter()
+                    .map(|f| block_sum(f, origin, c, true))
+                    .sum::<f64>()
+                    / renders
+                    / (pixels_per_block * pixels_per_block);
+                out.push(BlockStatistics {
+                    path_mean: block_sum(path, origin, c, false) / pixels_per_block,
+                    path_variance: block_sum(path, origin, c, true)
+                        / (pixels_per_block * pixels_per_block),
+                    traced_mean,
+                    traced_spread: spread / renders,
+                    traced_estimate: estimate / renders,
+                });
+            }
+        }
+    }
+    out
 }
 
 #[test]

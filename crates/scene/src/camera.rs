@@ -86,9 +86,11 @@ impl Camera {
 
     /// Where the world point `p` appears to this camera if it is a pinhole (no aperture): the
     /// film position, the end of a ray to the camera, and the camera's importance there (see
-    /// [`CameraConnection`]). `None` with a lens, and for points behind the near plane or off
-    /// the film. Assumes a rigid (or uniformly scaled) camera transform, as `lookat` gives.
-    pub fn connect(&self, p: Vec3) -> Option<CameraConnection> {
+    /// [`CameraConnection`]). `None` with a lens, and for points behind the near plane or more
+    /// than `margin` pixels off the film (a reconstruction filter's radius: camera samples of
+    /// the edge pixels reach that far). Assumes a rigid (or uniformly scaled) camera transform,
+    /// as `lookat` gives.
+    pub fn connect(&self, p: Vec3, margin: f32) -> Option<CameraConnection> {
         if self.has_lens() {
             return None;
         }
@@ -102,7 +104,8 @@ impl Camera {
             -on_plane.y / self.tan_half_fov.y,
         );
         let film = (ndc + Vec2::ONE) * 0.5 * self.resolution;
-        if !(film.cmpge(Vec2::ZERO).all() && film.cmplt(self.resolution).all()) {
+        let margin = Vec2::splat(margin);
+        if !(film.cmpge(-margin).all() && film.cmplt(self.resolution + margin).all()) {
             return None;
         }
         let eye = self.to_world.w_axis.truncate();

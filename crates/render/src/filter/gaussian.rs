@@ -65,6 +65,20 @@ impl GaussianFilter {
         eval(self.stddev, self.radius, x)
     }
 
+    /// The density (per pixel) of [`Self::sample_1d`] at offset `x`: the piecewise-linear
+    /// interpolant of `f₁` divided by its integral; zero outside `(-radius, radius)`.
+    pub fn pdf_1d(&self, x: f32) -> f32 {
+        let h = 2.0 * self.radius / SEGMENTS as f32;
+        let position = (x + self.radius) / h;
+        if !(position > 0.0 && position < SEGMENTS as f32) {
+            return 0.0;
+        }
+        let i = (position as usize).min(SEGMENTS - 1);
+        let s = position - i as f32;
+        let (f0, f1) = (self.values[i], self.values[i + 1]);
+        (f0 + (f1 - f0) * s) / self.total
+    }
+
     /// Maps `u ∈ [0, 1)` to an offset in `[-radius, radius]` (pixels) with density proportional
     /// to the piecewise-linear interpolant of `f₁`. Monotonic in `u`.
     pub fn sample_1d(&self, u: f32) -> f32 {

@@ -108,6 +108,59 @@ impl Filter {
         self.eval_1d(offset.x) * self.eval_1d(offset.y)
     }
 
+    /// The density (per pixel) with which [`Self::sample_1d`] draws offset `x`: `f₁` divided by
+    /// its integral (for the gaussian, its tabulated interpolant's).
+    pub fn pdf_1d(&self, x: f32) -> f32 {
+        match self {
+            Self::Box => self.eval_1d(x),
+            Self::Tent { radius } => self.eval_1d(x) / radius,
+            Self::Gaussian(g) => g.pdf_1d(x),
+        }
+    }
+
+    /// The density (per square pixel) with which [`Self::sample`] draws `offset` from the pixel
+    /// centre. A camera sample at film position `x` counts towards pixel `p` with this weight at
+    /// `x − centre(p)`, which is what a light path reaching the film at `x` splats into `p`.
+    pub fn pdf(&self, offset: Vec2) -> f32 {
+        self.pdf_1d(offset.x) * self.pdf_1d(offset.y)
+    }
+
+    /// Calls `visit(pixel, weight)` for every pixel of a `width × height` image whose camera
+    /// samples can land at the film position `film` (pixels), with the density [`Self::pdf`] of
+    /// that offset from the pixel's centre as the weight (per square pixel, only where positive).
+    /// A light path that reaches the film at `film` splats its contribution times this weight
+    /// into each, which estimates the same filtered pixel values as the camera samples. With the
+    /// box filter that is the one pixel containing `film`, with weight 1.
+    pub fn for_each_pixel_at(
+        &self,
+        film: Vec2,
+        width: u32,
+        height: u32,
+        mut visit: impl FnMut(UVec2, f32),
+    ) {
+        let reach = self.radius() + 0.5;
+        let range = |x: f32, size: u32| {
+            let first = (x - reach).floor().max(0.0) as u32;
+            let last = ((x + reach).ceil().min(size as f32 - 1.0)).max(0.0) as u32;
+            first..=last
+        };
+        if !film.is_finite() || width == 0 || height == 0 {
+            return;
+        }
+        for y in range(film.y, height) {
+            let weight_y = self.pdf_1d(film.y - y as f32 - 0.5);
+            if weight_y <= 0.0 {
+                continue;
+            }
+            for x in range(film.x, width) {
+                let weight = self.pdf_1d(film.x - x as f32 - 0.5) * weight_y;
+                if weight > 0.0 {
+                    visit(UVec2::new(x, y), weight);
+                }
+            }
+        }
+    }
+
     /// Maps a uniform `u ∈ [0, 1)` to an offset in `[-radius, radius]` (pixels) distributed with
     /// density proportional to `f₁`. Monotonic in `u`.
     pub fn sample_1d(&self, u: f32) -> f32 {

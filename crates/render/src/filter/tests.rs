@@ -203,3 +203,75 @@ fn chi_square_rejects_a_wrong_distribution() {
         "chi2 = {chi2:.1}, critical {critical:.1}"
     );
 }
+
+/// The density the light tracer splats with is the sampler's: integrating `pdf_1d` up to
+/// `sample_1d(u)` gives back `u` (so it also integrates to 1), and it is zero outside the radius.
+#[test]
+fn pdf_is_the_density_of_the_sampled_offsets() {
+    for (name, filter) in filters() {
+        let r = f64::from(filter.radius());
+        let cdf = |x: f64| {
+            let n = 4000;
+            let h = (x + r) / n as f64;
+            let offset = 0.5 * h / 3f64.sqrt();
+            let f = |t: f64| f64::from(filter.pdf_1d(t as f32));
+            (0..n)
+                .map(|i| {
+                    let mid = -r + (i as f64 + 0.5) * h;
+                    0.5 * h * (f(mid - offset) + f(mid + offset))
+                })
+                .sum::<f64>()
+        };
+        assert!((cdf(r) - 1.0).abs() < 1e-4, "{name}: total {}", cdf(r));
+        for u in [0.01, 0.1, 0.25, 0.5, 0.7, 0.93, 0.999] {
+            let x = f64::from(filter.sample_1d(u as f32));
+            assert!(
+                (cdf(x) - u).abs() < 2e-4,
+                "{name}: CDF of the density at sample_1d({u}) = {x} is {}",
+                cdf(x)
+            );
+        }
+        assert_eq!(filter.pdf_1d(filter.radius() + 0.01), 0.0, "{name}");
+        assert_eq!(filter.pdf_1d(-filter.radius() - 0.01), 0.0, "{name}");
+        let offset = Vec2::new(0.3 * filter.radius(), -0.2 * filter.radius());
+        assert_eq!(
+            filter.pdf(offset),
+            filter.pdf_1d(offset.x) * filter.pdf_1d(offset.y),
+            "{name}"
+        );
+    }
+}
+
+/// `for_each_pixel_at` visits exactly the pixels a brute-force scan of the image finds with a
+/// positive density, once each and with that density, for film positions inside, on pixel
+/// borders and beyond the image's edges; with the box filter that is the containing pixel.
+#[test]
+fn film_positions_reach_the_pixels_whose_samples_land_there() {
+    let (width, height) = (7, 5);
+    let mut rng = Rng::new(21);
+    for (name, filter) in filters() {
+        for case in 0..300 {
+            let film = match case % 3 {
+                0 => Vec2::new(rng.next_f32() * 7.0, rng.next_f32() * 5.0),
+                1 => Vec2::new((case % 8) as f32, (case % 6) as f32),
+                _ => Vec2::new(rng.next_f32() * 13.0 - 3.0, rng.next_f32() * 11.0 - 3.0),
+            };
+            let mut visited = Vec::new();
+            filter.for_each_pixel_at(film, width, height, |pixel, weight| {
+                visited.push((pixel, weight));
+            });
+            let expected: Vec<(UVec2, f32)> = (0..height)
+                .flat_map(|y| (0..width).map(move |x| UVec2::new(x, y)))
+                .filter_map(|pixel| {
+                    let centre = pixel.as_vec2() + Vec2::splat(0.5);
+                    let weight = filter.pdf(film - centre);
+                    (weight > 0.0).then_some((pixel, weight))
+                })
+                .collect();
+            assert_eq!(visited, expected, "{name}, film position {film}");
+            if name == "box" && film.cmpge(Vec2::ZERO).all() && film.x < 7.0 && film.y < 5.0 {
+                assert_eq!(visited, vec![(film.floor().as_uvec2(), 1.0)], "{film}");
+            }
+        }
+    }
+}
