@@ -76,8 +76,10 @@ pub struct Film {
     width: u32,
     height: u32,
     pixels: Vec<PixelSum>,
-    /// Per pixel: the sum and the sum of squares of the light paths' splats (each path splats
-    /// at most once per pixel).
+    /// Per pixel: the sum and the sum of squares of the light paths' splats. The variance
+    /// estimate treats each splat as one path's whole share of the pixel, which holds unless two
+    /// vertices of one path land in the same pixel (rare), and treats pixels as independent,
+    /// which a filter wider than a pixel makes them not (a path splats into its neighbours too).
     splat_sum: Vec<DVec3>,
     splat_sum_sq: Vec<DVec3>,
     /// Light paths traced, whether or not they splatted anything.
