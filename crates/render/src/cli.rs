@@ -123,10 +123,9 @@ pub struct RenderArgs {
     /// Caustics by light tracing: light seen on a diffuse or glossy surface after mirrors or
     /// glass (light → specular → surface → camera) is traced from the lights and connected to
     /// the camera instead of being found by chance, splatting into the pixels the filter
-    /// reaches. Needs a pinhole camera, a delta BSDF and an area light; ignored otherwise. `auto` turns it on where it applies
-    /// unless --state or --resume is given; with another preset, this flag does. Not with
-    /// --state or --resume.
-    #[arg(long, conflicts_with_all = ["state", "resume"])]
+    /// reaches. Needs a pinhole camera, a delta BSDF and an area light; ignored otherwise.
+    /// `auto` turns it on where it applies; with another preset, this flag does.
+    #[arg(long)]
     pub light_tracing: bool,
     /// Maximum number of path vertices after the camera, as in Mitsuba (1: emitters seen
     /// directly; 2: adds direct lighting).

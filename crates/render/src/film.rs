@@ -65,6 +65,42 @@ impl PixelSum {
     }
 }
 
+/// Fractional bits of [`ExactSum`]'s fixed point: a resolution of 2⁻⁴⁸ ≈ 3.6e-15 and room for
+/// sums up to 2⁷⁹ ≈ 6e23.
+const EXACT_FRACTION_BITS: i32 = 48;
+
+/// A per-channel sum kept exactly, in fixed point with [`EXACT_FRACTION_BITS`] fractional bits,
+/// so that it does not depend on the order of its terms: light paths' splats reach a pixel in an
+/// order that depends on how the samples were split into passes, and a resumed render (whose
+/// passes split differently) must give the same bits as an uninterrupted one. Each term is
+/// rounded to the nearest step once; sums saturate instead of wrapping.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ExactSum(pub [i128; 3]);
+
+impl ExactSum {
+    /// Adds `value`, rounded to the nearest multiple of the resolution.
+    pub fn add(&mut self, value: DVec3) {
+        let scale = 2f64.powi(EXACT_FRACTION_BITS);
+        for (sum, v) in self.0.iter_mut().zip(value.to_array()) {
+            // `as` saturates; non-finite values never reach the film.
+            *sum = sum.saturating_add((v * scale).round() as i128);
+        }
+    }
+
+    /// Adds another sum's terms.
+    pub fn merge(&mut self, other: &ExactSum) {
+        for (sum, o) in self.0.iter_mut().zip(other.0) {
+            *sum = sum.saturating_add(o);
+        }
+    }
+
+    /// The sum, rounded to `f64`.
+    pub fn value(&self) -> DVec3 {
+        let scale = 2f64.powi(-EXACT_FRACTION_BITS);
+        DVec3::from_array(self.0.map(|sum| sum as f64 * scale))
+    }
+}
+
 /// A `width × height` grid of [`PixelSum`]s, row-major, top row first, and the contributions
 /// light paths splatted onto it.
 ///
@@ -76,14 +112,26 @@ pub struct Film {
     width: u32,
     height: u32,
     pixels: Vec<PixelSum>,
-    /// Per pixel: the sum and the sum of squares of the light paths' splats. The variance
+    /// Per pixel: the exact sum and sum of squares of the light paths' splats. The variance
     /// estimate treats each splat as one path's whole share of the pixel, which holds unless two
     /// vertices of one path land in the same pixel (rare), and treats pixels as independent,
     /// which a filter wider than a pixel makes them not (a path splats into its neighbours too).
-    splat_sum: Vec<DVec3>,
-    splat_sum_sq: Vec<DVec3>,
+    splat_sum: Vec<ExactSum>,
+    splat_sum_sq: Vec<ExactSum>,
     /// Light paths traced, whether or not they splatted anything.
     light_paths: u64,
+}
+
+/// The light paths' share of a film: per pixel the exact sums of their splats and of the
+/// squares, and how many paths were traced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Splats {
+    /// Per pixel, row-major, the sum of the splats.
+    pub sums: Vec<ExactSum>,
+    /// Per pixel, row-major, the sum of the splats' squares.
+    pub sums_sq: Vec<ExactSum>,
+    /// Light paths traced, whether or not they splatted anything.
+    pub light_paths: u64,
 }
 
 impl Film {
@@ -97,26 +145,55 @@ impl Film {
         .expect("the pixel count matches")
     }
 
-    /// A film of `width × height` pixels holding `pixels` (row-major, top row first); `None`
-    /// unless there are exactly `width * height` of them.
+    /// A film of `width × height` pixels holding `pixels` (row-major, top row first) and no
+    /// splats; `None` unless there are exactly `width * height` of them.
     pub fn from_pixels(width: u32, height: u32, pixels: Vec<PixelSum>) -> Option<Self> {
-        let count = width as usize * height as usize;
-        (pixels.len() == count).then(|| Self {
+        let count = pixels.len();
+        Self::from_parts(
             width,
             height,
             pixels,
-            splat_sum: vec![DVec3::ZERO; count],
-            splat_sum_sq: vec![DVec3::ZERO; count],
-            light_paths: 0,
+            Splats {
+                sums: vec![ExactSum::default(); count],
+                sums_sq: vec![ExactSum::default(); count],
+                light_paths: 0,
+            },
+        )
+    }
+
+    /// A film of `width × height` pixels holding `pixels` and `splats` (each row-major, top
+    /// row first); `None` unless each has exactly `width * height` entries.
+    pub fn from_parts(
+        width: u32,
+        height: u32,
+        pixels: Vec<PixelSum>,
+        splats: Splats,
+    ) -> Option<Self> {
+        let count = width as usize * height as usize;
+        let sizes_match =
+            pixels.len() == count && splats.sums.len() == count && splats.sums_sq.len() == count;
+        sizes_match.then_some(Self {
+            width,
+            height,
+            pixels,
+            splat_sum: splats.sums,
+            splat_sum_sq: splats.sums_sq,
+            light_paths: splats.light_paths,
         })
+    }
+
+    /// Per pixel (row-major, top row first) the exact sums of the light paths' splats and of
+    /// their squares.
+    pub fn splat_sums(&self) -> (&[ExactSum], &[ExactSum]) {
+        (&self.splat_sum, &self.splat_sum_sq)
     }
 
     /// Adds one light path's contribution `value` to `pixel`; panics outside the film.
     pub fn add_splat(&mut self, pixel: UVec2, value: Vec3) {
         let i = self.index(pixel);
         let v = value.as_dvec3();
-        self.splat_sum[i] += v;
-        self.splat_sum_sq[i] += v * v;
+        self.splat_sum[i].add(v);
+        self.splat_sum_sq[i].add(v * v);
     }
 
     /// Counts `paths` more light paths traced (splatting or not).
@@ -147,7 +224,7 @@ impl Film {
         if self.light_paths == 0 {
             return mean;
         }
-        mean + (self.splat_sum[i] * self.splat_scale()).as_vec3()
+        mean + (self.splat_sum[i].value() * self.splat_scale()).as_vec3()
     }
 
     fn variance(&self, i: usize) -> Vec3 {
@@ -156,8 +233,8 @@ impl Film {
             return variance;
         }
         let paths = self.light_paths as f64;
-        let mean = self.splat_sum[i] / paths;
-        let spread = (self.splat_sum_sq[i] / paths - mean * mean).max(DVec3::ZERO);
+        let mean = self.splat_sum[i].value() / paths;
+        let spread = (self.splat_sum_sq[i].value() / paths - mean * mean).max(DVec3::ZERO);
         variance + (spread * self.splat_scale() * self.splat_scale() * paths).as_vec3()
     }
 
@@ -221,10 +298,10 @@ impl Film {
             mine.merge(theirs);
         }
         for (mine, theirs) in self.splat_sum.iter_mut().zip(&other.splat_sum) {
-            *mine += *theirs;
+            mine.merge(theirs);
         }
         for (mine, theirs) in self.splat_sum_sq.iter_mut().zip(&other.splat_sum_sq) {
-            *mine += *theirs;
+            mine.merge(theirs);
         }
         self.light_paths += other.light_paths;
         Ok(())
@@ -279,6 +356,41 @@ mod tests {
         other.merge(&film).unwrap();
         assert_eq!(other.light_paths(), 8);
         assert_eq!(other.pixel_value(UVec2::new(0, 0)), Vec3::splat(7.0));
+    }
+
+    #[test]
+    fn exact_sums_do_not_depend_on_the_order_of_their_terms() {
+        // Terms over many magnitudes, whose f64 sum depends on the order.
+        let terms: Vec<DVec3> = (0..200)
+            .map(|k| {
+                let k = f64::from(k);
+                DVec3::new(1e6 / (k + 1.0), (k * 0.37).sin() * 1e-3, 1.0 + k * 1e-9)
+            })
+            .collect();
+        let (mut forward, mut backward) = (ExactSum::default(), ExactSum::default());
+        terms.iter().for_each(|&t| forward.add(t));
+        terms.iter().rev().for_each(|&t| backward.add(t));
+        assert_eq!(forward, backward);
+        let f64_forward: DVec3 = terms.iter().sum();
+        let f64_backward: DVec3 = terms.iter().rev().sum();
+        assert_ne!(
+            f64_forward, f64_backward,
+            "the test's terms need an order-dependent f64 sum"
+        );
+        let error = (forward.value() - f64_forward).abs();
+        let bound = f64_forward.abs() * 1e-12 + DVec3::splat(1e-12);
+        assert!(error.cmple(bound).all(), "{error} beyond {bound}");
+        // Multiples of the resolution are exact, and a merge is a sum.
+        let mut half = ExactSum::default();
+        half.add(DVec3::new(0.5, -0.25, 3.0));
+        let mut twice = half;
+        twice.merge(&half);
+        assert_eq!(twice.value(), DVec3::new(1.0, -0.5, 6.0));
+        // Far past the range, sums saturate instead of wrapping round to the other sign.
+        let mut huge = ExactSum::default();
+        huge.add(DVec3::splat(1e30));
+        huge.add(DVec3::splat(1e30));
+        assert!(huge.value().min_element() > 0.0);
     }
 
     #[test]

@@ -176,6 +176,7 @@ fn saved_state(output: &RenderOutput, plan: &RenderPlan, identity: Identity) -> 
             passes: output.passes,
             nan_count: output.non_finite.nan,
             inf_count: output.non_finite.inf,
+            light_paths: output.film.light_paths(),
             sampler_spp: plan.sampler_spp,
             scene_hash: identity.scene_hash,
             settings: identity.settings,

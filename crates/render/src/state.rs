@@ -3,9 +3,10 @@
 //!
 //! The file is one line of JSON (a [`StateHeader`]) and a newline, followed by every pixel's
 //! sums, row-major, top row first: `sum` r, g, b and `sum_sq` r, g, b as little-endian `f64`,
-//! then `count` as a little-endian `u32` ([`PIXEL_BYTES`] bytes per pixel). Resuming adds new
-//! samples to exactly these sums, so a render stopped and resumed any number of times gives the
-//! same bits as one uninterrupted render.
+//! then `count` as a little-endian `u32`, then the light paths' splat sums r, g, b and their
+//! squares' as little-endian `i128` fixed point ([`crate::film::ExactSum`]; [`PIXEL_BYTES`]
+//! bytes per pixel). Resuming adds new samples and splats to exactly these sums, so a render
+//! stopped and resumed any number of times gives the same bits as one uninterrupted render.
 
 use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
@@ -15,7 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::atomic_write::{WriteError, write_bytes_atomically};
 use crate::driver::{NonFiniteCounts, ResumePoint};
-use crate::film::{Film, PixelSum};
+use crate::film::{ExactSum, Film, PixelSum, Splats};
 
 /// What identifies the state format in [`StateHeader::format`].
 pub const FORMAT: &str = "strata-render-state";
@@ -23,8 +24,9 @@ pub const FORMAT: &str = "strata-render-state";
 /// The state format's version in [`StateHeader::version`].
 pub const VERSION: u32 = 2;
 
-/// Bytes per pixel after the header: six `f64` sums and a `u32` count.
-pub const PIXEL_BYTES: usize = 6 * 8 + 4;
+/// Bytes per pixel after the header: six `f64` sums and a `u32` count, then the light paths'
+/// exact splat sums (three `i128`) and sums of squares (three `i128`).
+pub const PIXEL_BYTES: usize = 6 * 8 + 4 + 6 * 16;
 
 /// Longest header line accepted when reading, bytes.
 const MAX_HEADER_BYTES: usize = 1 << 16;
@@ -48,6 +50,8 @@ pub struct StateHeader {
     pub nan_count: u64,
     /// Samples left out as infinite.
     pub inf_count: u64,
+    /// Light paths traced into the film (one per pixel sample with light tracing, else 0).
+    pub light_paths: u64,
     /// Sample count the sampler's pattern is laid out for; a resumed render keeps it.
     pub sampler_spp: u32,
     /// [`crate::fingerprint::scene_fingerprint`] of the scene: its content, including the mesh
@@ -87,7 +91,10 @@ impl RenderState {
         let mut bytes = serde_json::to_vec(&self.header).expect("StateHeader serialises to JSON");
         bytes.push(b'\n');
         bytes.reserve(self.film.pixels().len() * PIXEL_BYTES);
-        for pixel in self.film.pixels() {
+        let (splat_sums, splat_sums_sq) = self.film.splat_sums();
+        for ((pixel, splat_sum), splat_sum_sq) in
+            self.film.pixels().iter().zip(splat_sums).zip(splat_sums_sq)
+        {
             for v in pixel
                 .sum
                 .to_array()
@@ -97,6 +104,9 @@ impl RenderState {
                 bytes.extend_from_slice(&v.to_le_bytes());
             }
             bytes.extend_from_slice(&pixel.count.to_le_bytes());
+            for v in splat_sum.0.into_iter().chain(splat_sum_sq.0) {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
         }
         bytes
     }
@@ -181,13 +191,31 @@ fn decode(header: StateHeader, data: &[u8]) -> Result<RenderState, String> {
             header.height
         ));
     }
-    let pixels = data.chunks_exact(PIXEL_BYTES).map(read_pixel).collect();
-    let film = Film::from_pixels(header.width, header.height, pixels)
+    let mut pixels = Vec::with_capacity(expected / PIXEL_BYTES);
+    let mut splats = Splats {
+        sums: Vec::with_capacity(expected / PIXEL_BYTES),
+        sums_sq: Vec::with_capacity(expected / PIXEL_BYTES),
+        light_paths: header.light_paths,
+    };
+    for bytes in data.chunks_exact(PIXEL_BYTES) {
+        pixels.push(read_pixel(bytes));
+        let exact = |first: usize| {
+            ExactSum([0, 1, 2].map(|c| {
+                let start = 52 + 16 * (first + c);
+                let mut b = [0u8; 16];
+                b.copy_from_slice(&bytes[start..start + 16]);
+                i128::from_le_bytes(b)
+            }))
+        };
+        splats.sums.push(exact(0));
+        splats.sums_sq.push(exact(3));
+    }
+    let film = Film::from_parts(header.width, header.height, pixels, splats)
         .ok_or("pixel count does not match the size")?;
     Ok(RenderState { header, film })
 }
 
-/// One pixel's sums from its [`PIXEL_BYTES`] bytes.
+/// One pixel's sample sums from the first 52 of its [`PIXEL_BYTES`] bytes.
 fn read_pixel(bytes: &[u8]) -> PixelSum {
     let f = |i: usize| {
         let mut b = [0u8; 8];
@@ -214,6 +242,8 @@ mod tests {
         film.add(UVec2::new(1, 0), Vec3::new(0.1, 2.5, 1e-30));
         film.add(UVec2::new(1, 0), Vec3::new(3.0, -0.0, 7.0));
         film.add(UVec2::new(2, 1), Vec3::splat(1.0 / 3.0));
+        film.add_splat(UVec2::new(0, 1), Vec3::new(0.25, 1e-9, 3e4));
+        film.add_light_paths(6);
         RenderState {
             header: StateHeader {
                 format: FORMAT.to_string(),
@@ -224,6 +254,7 @@ mod tests {
                 passes: 2,
                 nan_count: 1,
                 inf_count: 0,
+                light_paths: 6,
                 sampler_spp: 16,
                 scene_hash: "0123456789abcdef".to_string(),
                 settings: "mis".to_string(),

@@ -117,11 +117,8 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
     }
     if let Transport::Path(settings) = &mut transport {
-        // `auto` traces caustics from the lights wherever that applies, except when the render
-        // is saved for resuming (a saved state cannot hold the light paths' splats yet).
-        let auto_traces = args.integrator == IntegratorPreset::Auto
-            && args.state.is_none()
-            && args.resume.is_none();
+        // `auto` traces caustics from the lights wherever that applies.
+        let auto_traces = args.integrator == IntegratorPreset::Auto;
         settings.light_tracing =
             (args.light_tracing || auto_traces) && light_tracing_applies(features);
     }

@@ -313,7 +313,7 @@ fn block_statistics(
 }
 
 #[test]
-fn auto_traces_caustics_where_they_apply_unless_the_render_is_saved() {
+fn auto_traces_caustics_where_they_apply() {
     let load = |name: &str| {
         scene::load(&common::scenes_dir().join(name), &[]).unwrap_or_else(|e| panic!("{e}"))
     };
@@ -326,7 +326,7 @@ fn auto_traces_caustics_where_they_apply_unless_the_render_is_saved() {
     };
     let glass = load("cbox-glass.xml");
     assert!(traced(&glass, &[]), "auto on glass");
-    assert!(!traced(&glass, &["--state", "s.state"]), "auto, saved");
+    assert!(traced(&glass, &["--state", "s.state"]), "auto, saved");
     assert!(!traced(&glass, &["--integrator", "mis"]), "mis");
     assert!(traced(&glass, &["--integrator", "mis", "--light-tracing"]));
     assert!(
