@@ -20,9 +20,11 @@ use std::process::Command;
 
 /// Block edge in pixels.
 const BLOCK: u32 = 8;
-/// Relative precision of the images' float32 pixels: noise-free regions (a constant sky) agree
-/// only to rounding, which is added to each block's variance.
-const F32_RELATIVE_PRECISION: f64 = 1e-6;
+/// Relative agreement expected in noise-free regions (a constant sky), added to each block's
+/// variance: Mitsuba 3 (`scalar_rgb`) gives the sky of radiance (0.3, 0.35, 0.4) as (0.29999977,
+/// 0.35000354, 0.39999613), up to 1.0e-5 off in every pixel of every render, which float32
+/// rounding of its emitter's colour explains and no sample count averages away.
+const NOISELESS_RELATIVE_PRECISION: f64 = 2e-5;
 /// Independent renders per renderer (seeds 1, 2, …).
 const RENDERS: u32 = 4;
 /// Family-wise significance level of the block test.
@@ -143,7 +145,7 @@ fn block_test(strata: &[Image], mitsuba: &[Image]) -> (usize, usize, f64) {
     let mitsuba_effect = design_effect(&mitsuba_blocks);
     let (mut failed, mut max_abs_z) = (0, 0.0_f64);
     for (s, m) in strata_blocks.iter().zip(&mitsuba_blocks) {
-        let rounding = F32_RELATIVE_PRECISION * s.mean.abs().max(m.mean.abs());
+        let rounding = NOISELESS_RELATIVE_PRECISION * s.mean.abs().max(m.mean.abs());
         let variance = s.pixel_variance * strata_effect
             + m.pixel_variance * mitsuba_effect
             + rounding * rounding;
