@@ -1,5 +1,6 @@
 //! Caustics by light tracing: paths traced from the area lights, first through a mirror or glass,
-//! and connected to a pinhole camera from every non-delta surface they reach.
+//! and connected to the camera (through a point of its aperture, for a thin lens) from every
+//! non-delta surface they reach.
 //!
 //! A path tracer finds light that reaches a diffuse surface through a specular chain (light →
 //! glass → floor → camera) only when a BSDF-sampled direction happens to run through the chain
@@ -18,8 +19,9 @@
 //!
 //! Sampler dimensions, in order, only those the scene needs (as the path tracer's): light choice
 //! (1D, with more than one area light), point on the light (2D), emitted direction (2D), then per
-//! vertex the BSDF lobe (1D, when some material chooses a lobe) and direction (2D), and roulette
-//! (1D, with roulette from its start depth on).
+//! vertex the aperture point of the camera connection (2D, from the second vertex on, with a
+//! thin-lens camera), the BSDF lobe (1D, when some material chooses a lobe) and direction (2D),
+//! and roulette (1D, with roulette from its start depth on).
 
 use crate::optional_draw::next_1d_if;
 use crate::{PathSettings, RayTally, RussianRoulette, SurfaceHit, World};
@@ -29,7 +31,8 @@ use lights::Light;
 use sampling::Sampler;
 use sampling::distribution::CdfTable;
 
-/// Where a surface point appears to a pinhole camera, and what a path reaching it is worth there.
+/// Where a surface point appears to the camera (through one point of its aperture), and what a
+/// path reaching it is worth there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraConnection {
     /// The film position the point projects to, in pixels ((0, 0) is the top-left corner).
@@ -39,8 +42,8 @@ pub struct CameraConnection {
     pub target: Vec3,
     /// The camera's importance W_e times |cos θ| at the camera over the squared distance, in
     /// units that make `weight · f · cos · importance` the point's contribution to one pixel
-    /// sample: 1 / (A cos³θ r²), with A the area of the image plane at unit distance and θ the
-    /// angle off the view axis.
+    /// sample: 1 / (A cos³θ r²), with A the area of the image plane at unit distance, r the
+    /// distance to the aperture point and θ the angle off the view axis there.
     pub importance: f32,
 }
 
@@ -57,12 +60,15 @@ pub struct LightTracer {
     russian_roulette: Option<RussianRoulette>,
     /// Whether some material draws a number to choose its lobe.
     draws_lobe_choice: bool,
+    /// Whether the camera has an aperture, so each camera connection draws a point on it.
+    draws_lens: bool,
 }
 
 impl LightTracer {
-    /// The tracer for `world` with the path tracer's `settings` (depth and roulette); `None`
-    /// when the world has no area light with power.
-    pub fn new(world: &World, settings: &PathSettings) -> Option<Self> {
+    /// The tracer for `world` with the path tracer's `settings` (depth and roulette), for a
+    /// camera with an aperture (`camera_has_lens`) or a pinhole; `None` when the world has no
+    /// area light with power.
+    pub fn new(world: &World, settings: &PathSettings, camera_has_lens: bool) -> Option<Self> {
         let lights: Vec<u32> = (0..world.lights().len() as u32)
             .filter(|&i| {
                 matches!(
@@ -84,6 +90,7 @@ impl LightTracer {
                 .unwrap_or(crate::reference::UNBOUNDED_DEPTH_CAP),
             russian_roulette: settings.russian_roulette,
             draws_lobe_choice: world.has_lobe_choice(),
+            draws_lens: camera_has_lens,
         })
     }
 
@@ -94,7 +101,7 @@ impl LightTracer {
         &self,
         world: &World,
         sampler: &mut impl Sampler,
-        connect: &impl Fn(Vec3) -> Option<CameraConnection>,
+        connect: &impl Fn(Vec3, Vec2) -> Option<CameraConnection>,
         tally: &mut impl RayTally,
         splat: &mut impl FnMut(Vec2, Vec3),
     ) {
@@ -119,9 +126,14 @@ impl LightTracer {
             };
             let towards_light = -ray.dir;
             let wo = surface.frame.to_local(towards_light);
+            let u_lens = if vertex > 1 && self.draws_lens {
+                sampler.next_2d()
+            } else {
+                Vec2::ZERO
+            };
             if vertex > 1
                 && !surface.bsdf.is_delta()
-                && let Some(camera) = connect(surface.hit.p)
+                && let Some(camera) = connect(surface.hit.p, u_lens)
             {
                 let weight = emitted_weight * throughput;
                 connect_to_camera(world, &surface, towards_light, camera, tally, weight, splat);

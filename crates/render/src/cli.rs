@@ -123,7 +123,8 @@ pub struct RenderArgs {
     /// Caustics by light tracing: light seen on a diffuse or glossy surface after mirrors or
     /// glass (light → specular → surface → camera) is traced from the lights and connected to
     /// the camera instead of being found by chance, splatting into the pixels the filter
-    /// reaches. Needs a pinhole camera, a delta BSDF and an area light; ignored otherwise.
+    /// reaches (through a sampled aperture point with a thin lens). Needs a delta BSDF and an
+    /// area light; ignored otherwise.
     /// `auto` turns it on where it applies; with another preset, this flag does.
     #[arg(long)]
     pub light_tracing: bool,

@@ -211,9 +211,8 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     let (integrator, light_tracer) = match plan.transport {
         Transport::Reference(settings) => (Integrator::Reference(settings), None),
         Transport::Path(mut settings) => {
-            // The camera connection needs a pinhole.
-            let tracer = if settings.light_tracing && !camera.has_lens() {
-                LightTracer::new(world, &settings)
+            let tracer = if settings.light_tracing {
+                LightTracer::new(world, &settings, camera.has_lens())
             } else {
                 None
             };
@@ -244,7 +243,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         tracer.trace(
             world,
             &mut worker.sampler,
-            &|p| camera.connect(p, filter.radius()),
+            &|p, u_lens| camera.connect(p, filter.radius(), u_lens),
             &mut worker.tally,
             &mut add,
         );

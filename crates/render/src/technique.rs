@@ -193,12 +193,12 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
     }
 }
 
-/// Whether caustics by light tracing can run on the scene and find anything: a pinhole camera
-/// (the camera connection has no lens sampling), a delta BSDF to make caustics and a light with
-/// a surface to trace from. Any reconstruction filter: a light path splats into every pixel
-/// whose camera samples can reach its film position, weighted by the filter.
+/// Whether caustics by light tracing can find anything in the scene: a delta BSDF to make
+/// caustics and a light with a surface to trace from. Any camera (a thin lens's connections go
+/// through a sampled point of its aperture) and any reconstruction filter (a light path splats
+/// into every pixel whose camera samples can reach its film position, weighted by the filter).
 pub fn light_tracing_applies(features: &SceneFeatures) -> bool {
-    !features.has_lens && features.has_delta_bsdfs && features.has_hittable_lights
+    features.has_delta_bsdfs && features.has_hittable_lights
 }
 
 /// A 64-bit seed from the command line folded into the sampler's 32 bits.

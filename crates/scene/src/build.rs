@@ -84,7 +84,7 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
             }),
         });
     }
-    let features = SceneFeatures::of(&materials, &lights, desc.sensor.lens.is_some());
+    let features = SceneFeatures::of(&materials, &lights);
     let world = World::new(accel, materials, shape_material, shape_light, lights)
         .map_err(|m| error("scene".to_string(), m))?;
     let camera = camera(&desc);

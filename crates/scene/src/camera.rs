@@ -84,21 +84,39 @@ impl Camera {
         Ray::new(origin, self.to_world.transform_vector3(dir_local))
     }
 
-    /// Where the world point `p` appears to this camera if it is a pinhole (no aperture): the
-    /// film position, the end of a ray to the camera, and the camera's importance there (see
-    /// [`CameraConnection`]). `None` with a lens, and for points behind the near plane or more
-    /// than `margin` pixels off the film (a reconstruction filter's radius: camera samples of
-    /// the edge pixels reach that far). Assumes a rigid (or uniformly scaled) camera transform,
-    /// as `lookat` gives.
-    pub fn connect(&self, p: Vec3, margin: f32) -> Option<CameraConnection> {
-        if self.has_lens() {
-            return None;
-        }
+    /// Where the world point `p` appears to this camera through the point of its aperture that
+    /// `u_lens` ∈ [0, 1)² picks (as [`Camera::generate_ray`] does; ignored for a pinhole): the
+    /// film position of the camera rays that pass through that aperture point and `p`, the end
+    /// of a ray to the camera, and the camera's importance there (see [`CameraConnection`]).
+    /// `None` for points behind the near plane or more than `margin` pixels off the film (a
+    /// reconstruction filter's radius: camera samples of the edge pixels reach that far).
+    /// Assumes a rigid (or uniformly scaled) camera transform, as `lookat` gives.
+    ///
+    /// With a thin lens every ray through the aperture point `a` and `p` comes from the film
+    /// position whose pinhole ray meets the focus plane where the line from `a` through `p`
+    /// does; choosing `a` uniformly on the aperture and weighting by the importance below is
+    /// pbrt-v4's `PerspectiveCamera::SampleWi`, whose lens area cancels out.
+    pub fn connect(&self, p: Vec3, margin: f32, u_lens: Vec2) -> Option<CameraConnection> {
         let local = self.to_camera.transform_point3(p);
         if !(local.z > self.near_clip && local.is_finite()) {
             return None;
         }
-        let on_plane = local / local.z;
+        // The aperture point, the direction from it to `p`, the pinhole ray's point on the plane
+        // z = 1 for the film position, and the connection's end on the near plane.
+        let (aperture, to_p, on_plane, near) = match self.lens {
+            Some(lens) if lens.aperture_radius > 0.0 => {
+                let a = sample_concentric_disk(u_lens) * lens.aperture_radius;
+                let aperture = Vec3::new(a.x, a.y, 0.0);
+                let to_p = local - aperture;
+                let focus = aperture + to_p * (lens.focus_distance / to_p.z);
+                let near = aperture + to_p * (self.near_clip / to_p.z);
+                (aperture, to_p, focus / focus.z, near)
+            }
+            _ => {
+                let on_plane = local / local.z;
+                (Vec3::ZERO, local, on_plane, on_plane * self.near_clip)
+            }
+        };
         let ndc = Vec2::new(
             -on_plane.x / self.tan_half_fov.x,
             -on_plane.y / self.tan_half_fov.y,
@@ -108,14 +126,14 @@ impl Camera {
         if !(film.cmpge(-margin).all() && film.cmplt(self.resolution + margin).all()) {
             return None;
         }
-        let eye = self.to_world.w_axis.truncate();
+        let eye = self.to_world.transform_point3(aperture);
         let distance_squared = (p - eye).length_squared();
-        let cos_theta = local.z / local.length();
+        let cos_theta = to_p.z / to_p.length();
         let plane_area = 4.0 * self.tan_half_fov.x * self.tan_half_fov.y;
         let importance = 1.0 / (plane_area * cos_theta.powi(3) * distance_squared);
         importance.is_finite().then(|| CameraConnection {
             film,
-            target: self.to_world.transform_point3(on_plane * self.near_clip),
+            target: self.to_world.transform_point3(near),
             importance,
         })
     }

@@ -14,22 +14,20 @@ pub struct SceneFeatures {
     pub has_delta_lights: bool,
     /// True when some material has a non-delta lobe (diffuse, rough conductor).
     pub has_non_delta_bsdfs: bool,
-    /// True when some material is a delta BSDF (mirror, smooth dielectric).
+    /// True when some material has a delta lobe (mirror, smooth dielectric, or a twosided
+    /// with one on either side).
     pub has_delta_bsdfs: bool,
-    /// True when the camera has a thin lens.
-    pub has_lens: bool,
 }
 
 impl SceneFeatures {
-    /// The features of a scene with these materials, lights and camera.
-    pub fn of(materials: &[Bsdf], lights: &[Light], has_lens: bool) -> Self {
+    /// The features of a scene with these materials and lights.
+    pub fn of(materials: &[Bsdf], lights: &[Light]) -> Self {
         Self {
             light_count: lights.len(),
             has_hittable_lights: lights.iter().any(|l| !l.is_delta()),
             has_delta_lights: lights.iter().any(Light::is_delta),
             has_non_delta_bsdfs: materials.iter().any(|m| !m.is_delta()),
-            has_delta_bsdfs: materials.iter().any(Bsdf::is_delta),
-            has_lens,
+            has_delta_bsdfs: materials.iter().any(Bsdf::has_delta_lobe),
         }
     }
 }

@@ -179,7 +179,6 @@ mod tests {
             has_delta_lights,
             has_non_delta_bsdfs: true,
             has_delta_bsdfs: false,
-            has_lens: false,
         }
     }
 
