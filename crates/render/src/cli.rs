@@ -5,6 +5,7 @@
 //!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise|sobol]
 //!               [--rr on|off] [--adaptive] [--light-tracing] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
 //!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
+//!               [-D NAME=VALUE ...]
 //! strata diff A.exr B.exr
 //! strata merge A.exr B.exr … --out OUT.exr [--png OUT.png]
 //! ```
@@ -160,6 +161,11 @@ pub struct RenderArgs {
     /// the same as when STATE was saved.
     #[arg(long, value_name = "STATE")]
     pub resume: Option<PathBuf>,
+    /// Set the scene's parameter `$NAME` to VALUE, over its `<default name="NAME">`, as
+    /// Mitsuba's `-D NAME=VALUE` does (repeatable). A name no attribute of the scene uses is an
+    /// error.
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub defines: Vec<(String, String)>,
 }
 
 /// `strata merge`.
@@ -194,6 +200,20 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
         )),
         Err(e) => Err(format!("'{text}' is not a number: {e}")),
     }
+}
+
+/// Splits a `-D` argument at its first `=` into a parameter name (letters, digits and `_`, as
+/// `$name` references take) and its value.
+fn parse_define(text: &str) -> Result<(String, String), String> {
+    let Some((name, value)) = text.split_once('=') else {
+        return Err(format!("'{text}' is not NAME=VALUE"));
+    };
+    if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return Err(format!(
+            "'{name}' is not a parameter name (letters, digits and _)"
+        ));
+    }
+    Ok((name.to_string(), value.to_string()))
 }
 
 #[cfg(test)]
@@ -369,6 +389,23 @@ mod tests {
         ] {
             let error = parse(bad).expect_err(&format!("{bad:?} must not parse"));
             assert_eq!(error.exit_code(), 2, "{bad:?}: {error}");
+        }
+    }
+
+    #[test]
+    fn defines_collect_in_order_split_at_the_first_equals_sign() {
+        let args = render_args(&[
+            "render", "s.xml", "--out", "o.exr", "-D", "spp=4", "--define", "name=a=b", "-Dempty=",
+        ]);
+        let pair = |n: &str, v: &str| (n.to_string(), v.to_string());
+        assert_eq!(
+            args.defines,
+            [pair("spp", "4"), pair("name", "a=b"), pair("empty", "")]
+        );
+        for bad in ["spp", "=4", "s p=4", "$spp=4"] {
+            let error = parse(&["render", "s.xml", "--out", "o.exr", "-D", bad])
+                .expect_err(&format!("-D {bad} must not parse"));
+            assert_eq!(error.exit_code(), 2, "-D {bad}: {error}");
         }
     }
 

@@ -22,7 +22,7 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
     let load_start = Instant::now();
     let scene_bytes =
         scene::read_scene_file(&args.scene).map_err(|e| CommandError::BadInput(e.to_string()))?;
-    let mut desc = scene::parse_bytes(&scene_bytes, &args.scene, &[])
+    let mut desc = scene::parse_bytes(&scene_bytes, &args.scene, &args.defines)
         .map_err(|e| CommandError::BadInput(e.to_string()))?;
     if let (Some(width), Some(height)) = (args.width, args.height) {
         if u64::from(width) * u64::from(height) > MAX_FILM_PIXELS {

@@ -86,3 +86,67 @@ fn render_of_a_missing_scene_exits_2_naming_it() {
         "no image may be written for a scene that failed to load"
     );
 }
+
+#[test]
+fn defines_set_the_scenes_parameters_and_unused_ones_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("s.xml");
+    std::fs::write(
+        &scene,
+        r#"<scene version="3.0.0">
+    <default name="res" value="4"/>
+    <default name="sky" value="0.5"/>
+    <integrator type="path"/>
+    <sensor type="perspective">
+        <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="$res"/><integer name="height" value="3"/>
+        </film>
+    </sensor>
+    <emitter type="constant"><rgb name="radiance" value="$sky"/></emitter>
+</scene>"#,
+    )
+    .unwrap();
+    let out = dir.path().join("o.exr");
+    let output = strata(&[
+        "render",
+        arg(&scene),
+        "--out",
+        arg(&out),
+        "-D",
+        "res=7",
+        "-D",
+        "sky=0.25",
+    ]);
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let image = Image::read_exr(&out).unwrap();
+    assert_eq!((image.width, image.height), (7, 3));
+    // Every camera ray escapes to the sky: every pixel is its radiance exactly.
+    assert!(
+        image.data.iter().all(|&p| p == Vec3::splat(0.25)),
+        "the sky is not the -D value: {:?}",
+        image.data
+    );
+
+    let other = dir.path().join("other.exr");
+    let output = strata(&[
+        "render",
+        arg(&scene),
+        "--out",
+        arg(&other),
+        "-D",
+        "resolution=7",
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("resolution=7") && stderr.contains("s.xml"),
+        "{stderr}"
+    );
+    assert!(!other.exists(), "no image for a scene that failed to load");
+}

@@ -287,4 +287,15 @@ fn overrides_beat_defaults_and_reach_type_attributes() {
     let overrides = vec![("unused_name".to_string(), "1".to_string())];
     let err = scene::parse_file(&path, &overrides).unwrap_err();
     assert!(err.message.contains("unused_name"), "{err}");
+
+    // Two values for one name: neither may win silently.
+    let overrides = vec![
+        ("spp".to_string(), "64".to_string()),
+        ("spp".to_string(), "16".to_string()),
+    ];
+    let err = scene::parse_file(&path, &overrides).unwrap_err();
+    assert!(
+        err.message.contains("spp=64") && err.message.contains("spp=16"),
+        "{err}"
+    );
 }

@@ -172,6 +172,20 @@ fn parse_scene(
     };
     builder.sort_params();
     let file_loc = Loc::file_only(path);
+    if let Some((i, (name, _))) = overrides
+        .iter()
+        .enumerate()
+        .find(|(i, (name, _))| overrides[..*i].iter().any(|(other, _)| other == name))
+    {
+        return Err(file_loc.error(format!(
+            "parameter {name} is overridden twice ({name}={} and {name}={})",
+            overrides
+                .iter()
+                .find(|(other, _)| other == name)
+                .map_or("", |o| &o.1),
+            overrides[i].1
+        )));
+    }
     let root = match text {
         Some(text) => builder.parse_text(path, text.to_vec(), 0)?,
         None => builder.parse_file(path, 0, &file_loc)?,
