@@ -29,6 +29,8 @@ const NOISELESS_RELATIVE_PRECISION: f64 = 2e-5;
 const RENDERS: u32 = 4;
 /// Family-wise significance level of the block test.
 const ALPHA: f64 = 0.01;
+/// Failing blocks printed per scene, worst first.
+const SHOWN_FAILURES: usize = 5;
 
 /// Options of one crosscheck run.
 pub struct Options {
@@ -48,6 +50,8 @@ struct Outcome {
     blocks: usize,
     failed: usize,
     max_abs_z: f64,
+    /// The failing block-channels, worst first.
+    failures: Vec<Failure>,
     relmse: f64,
     mean_strata: f64,
     mean_mitsuba: f64,
@@ -75,8 +79,43 @@ pub fn run(strata: &Path, options: &Options) -> Result<bool, String> {
             outcome.mean_strata,
             outcome.mean_mitsuba
         );
+        for failure in outcome.failures.iter().take(SHOWN_FAILURES) {
+            println!("  {failure}");
+        }
     }
     Ok(all_passed)
+}
+
+/// A block and channel whose two means differ beyond the threshold.
+struct Failure {
+    /// Left and top pixel of the block.
+    x: u32,
+    y: u32,
+    /// 0, 1, 2 for R, G, B.
+    channel: usize,
+    z: f64,
+    mean_strata: f64,
+    mean_mitsuba: f64,
+    /// Standard deviations of the two means, as the test estimates them.
+    sd_strata: f64,
+    sd_mitsuba: f64,
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "block at pixel ({}, {}) {}: z {:+.2}, Strata {:.5} ± {:.5}, Mitsuba {:.5} ± {:.5}",
+            self.x,
+            self.y,
+            ["R", "G", "B"][self.channel],
+            self.z,
+            self.mean_strata,
+            self.sd_strata,
+            self.mean_mitsuba,
+            self.sd_mitsuba
+        )
+    }
 }
 
 fn compare(strata: &Path, scene: &Path, options: &Options) -> Result<Outcome, String> {
@@ -120,20 +159,21 @@ fn compare(strata: &Path, scene: &Path, options: &Options) -> Result<Outcome, St
     if (strata_mean.width, strata_mean.height) != (mitsuba_mean.width, mitsuba_mean.height) {
         return Err(format!("{name}: the two renderers' images differ in size"));
     }
-    let (blocks, failed, max_abs_z) = block_test(&strata_images, &mitsuba_images);
+    let (blocks, failures, max_abs_z) = block_test(&strata_images, &mitsuba_images);
     Ok(Outcome {
         scene: name,
         blocks,
-        failed,
+        failed: failures.len(),
         max_abs_z,
+        failures,
         relmse: relmse(&strata_mean, &mitsuba_mean).map_err(|e| e.to_string())?,
         mean_strata: mean(&strata_mean),
         mean_mitsuba: mean(&mitsuba_mean),
     })
 }
 
-/// (block-channel tests, failures, largest |z|).
-fn block_test(strata: &[Image], mitsuba: &[Image]) -> (usize, usize, f64) {
+/// (block-channel tests, the failing ones worst first, largest |z|).
+fn block_test(strata: &[Image], mitsuba: &[Image]) -> (usize, Vec<Failure>, f64) {
     let (w, h) = (strata[0].width, strata[0].height);
     let blocks_x = w.div_ceil(BLOCK);
     let blocks_y = h.div_ceil(BLOCK);
@@ -143,12 +183,12 @@ fn block_test(strata: &[Image], mitsuba: &[Image]) -> (usize, usize, f64) {
     let mitsuba_blocks = block_statistics(mitsuba, blocks_x, blocks_y);
     let strata_effect = design_effect(&strata_blocks);
     let mitsuba_effect = design_effect(&mitsuba_blocks);
-    let (mut failed, mut max_abs_z) = (0, 0.0_f64);
-    for (s, m) in strata_blocks.iter().zip(&mitsuba_blocks) {
+    let (mut failures, mut max_abs_z) = (Vec::new(), 0.0_f64);
+    for (index, (s, m)) in strata_blocks.iter().zip(&mitsuba_blocks).enumerate() {
         let rounding = NOISELESS_RELATIVE_PRECISION * s.mean.abs().max(m.mean.abs());
-        let variance = s.pixel_variance * strata_effect
-            + m.pixel_variance * mitsuba_effect
-            + rounding * rounding;
+        let strata_variance = s.pixel_variance * strata_effect;
+        let mitsuba_variance = m.pixel_variance * mitsuba_effect;
+        let variance = strata_variance + mitsuba_variance + rounding * rounding;
         let difference = s.mean - m.mean;
         let z = if variance > 0.0 {
             difference / variance.sqrt()
@@ -157,10 +197,22 @@ fn block_test(strata: &[Image], mitsuba: &[Image]) -> (usize, usize, f64) {
         };
         max_abs_z = max_abs_z.max(z.abs());
         if z.abs() > threshold {
-            failed += 1;
+            // `block_statistics` orders blocks row by row, three channels each.
+            let block = (index / 3) as u32;
+            failures.push(Failure {
+                x: block % blocks_x * BLOCK,
+                y: block / blocks_x * BLOCK,
+                channel: index % 3,
+                z,
+                mean_strata: s.mean,
+                mean_mitsuba: m.mean,
+                sd_strata: strata_variance.sqrt(),
+                sd_mitsuba: mitsuba_variance.sqrt(),
+            });
         }
     }
-    (tests, failed, max_abs_z)
+    failures.sort_by(|a, b| b.z.abs().total_cmp(&a.z.abs()));
+    (tests, failures, max_abs_z)
 }
 
 /// One block and channel of a set of renders.
