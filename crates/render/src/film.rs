@@ -66,7 +66,10 @@ impl PixelSum {
 }
 
 /// Fractional bits of [`ExactSum`]'s fixed point: a resolution of 2⁻⁴⁸ ≈ 3.6e-15 and room for
-/// sums up to 2⁷⁹ ≈ 6e23.
+/// sums up to 2⁷⁹ ≈ 6e23. Splats below half the resolution (and, in the sums of squares, splats
+/// below about 4e-8) count as zero, so a scene lit at radiances of order 1e-12 would lose its
+/// caustics' precision; scenes in physical units are many orders of magnitude away from either
+/// end.
 const EXACT_FRACTION_BITS: i32 = 48;
 
 /// A per-channel sum kept exactly, in fixed point with [`EXACT_FRACTION_BITS`] fractional bits,
