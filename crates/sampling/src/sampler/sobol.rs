@@ -1,7 +1,7 @@
 //! The Sobol sampler: Owen-scrambled Sobol points, padded per dimension with shuffled indices.
 
 use super::Sampler;
-use super::owen::{laine_karras, randomise, sobol_0, sobol_1};
+use super::owen::{laine_karras, randomise, randomise_pair, sobol_0, sobol_1};
 use crate::hash::mix64;
 use crate::rng::unit_f32_from_bits;
 use glam::{UVec2, Vec2};
@@ -121,9 +121,10 @@ impl Sampler for SobolSampler {
     fn next_2d(&mut self) -> Vec2 {
         let base = self.next_dimension_base();
         let index = self.shuffled_index(base);
-        Vec2::new(
-            unit_f32_from_bits(randomise(sobol_0(index), Self::word(base, 1))),
-            unit_f32_from_bits(randomise(sobol_1(index), Self::word(base, 2))),
-        )
+        let [x, y] = randomise_pair(
+            [sobol_0(index), sobol_1(index)],
+            [Self::word(base, 1), Self::word(base, 2)],
+        );
+        Vec2::new(unit_f32_from_bits(x), unit_f32_from_bits(y))
     }
 }
