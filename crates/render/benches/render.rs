@@ -1,11 +1,13 @@
 //! Rendering throughput on the scene suite: the BVH build of every scene, closest-hit and
 //! occlusion throughput (rays per second) on the rays a 1-spp render of each scene traces, and
-//! samples per second of every integrator preset on the Cornell box.
+//! samples per second of every integrator preset on the Cornell box, and on two threads the
+//! Cornell box with and without adaptive sampling (whose uneven per-pixel sample counts test how
+//! evenly the threads share a pass).
 //!
 //! Run with `cargo bench -p render --bench render` (a few minutes); one group with e.g.
-//! `cargo bench -p render --bench render -- samples`. Everything runs on one thread, so the
-//! figures do not depend on how busy the machine's other cores are; thread scaling is measured
-//! by `cargo xtask raycast-limit`.
+//! `cargo bench -p render --bench render -- samples`. Everything but the `two_threads` group runs
+//! on one thread, so the figures do not depend on how busy the machine's other cores are; thread
+//! scaling is measured by `cargo xtask raycast-limit`.
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -146,5 +148,40 @@ fn samples(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, scene_bvh, samples);
+/// Samples per second on two threads, the Cornell box at its own 128 × 128 and 32 spp, with
+/// `auto` and the Sobol sampler, with and without adaptive sampling: with the same samples traced
+/// (the pilot's included), the two differ by how well the threads share each pass's tiles.
+fn two_threads(c: &mut Criterion) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("a two-thread pool");
+    let scene = load(&scenes_dir().join("cbox.xml"), &[]);
+    let filter = film_filter(scene.desc.film.filter).expect("the scene's filter");
+    let spp = 32;
+    let pixels = u64::from(scene.desc.film.width) * u64::from(scene.desc.film.height);
+    let mut group = c.benchmark_group("two_threads/cbox");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(5));
+    group.throughput(Throughput::Elements(pixels * spp));
+    let spp = spp.to_string();
+    for (name, adaptive) in [("sobol", false), ("sobol_adaptive", true)] {
+        let mut flags = vec!["--sampler", "sobol", "--spp", &spp];
+        if adaptive {
+            flags.push("--adaptive");
+        }
+        let plan = plan_from_flags(&scene, &flags).expect("a plan");
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                pool.install(|| render_scene(&scene, &plan, &filter, &RenderOptions::quiet()))
+                    .expect("the render")
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, scene_bvh, samples, two_threads);
 criterion_main!(benches);
