@@ -21,6 +21,11 @@ pub(crate) struct ChosenLight {
     /// The light strategy's density per steradian used in MIS weights: pmf · pdf_solid_angle of
     /// the selection pmf (for RIS, of its power-proportional candidate source).
     pub pdf_for_mis: f32,
+    /// The direction to the light in the shading frame (unit length).
+    pub wi_local: Vec3,
+    /// The BSDF's sampling density per steradian towards the light (computed with f, which
+    /// shares its work; what MIS weighs the light sample against).
+    pub pdf_bsdf_solid_angle: f32,
 }
 
 /// Picks a light and a point on it as `mode` says, from the shading point of `surface` with
@@ -62,7 +67,8 @@ fn evaluate(
 ) -> Option<ChosenLight> {
     let sample = light.sample_li(surface.hit.p, u_point)?;
     let wi = surface.frame.to_local(sample.wi);
-    let f_cos = surface.bsdf.eval(wo, wi) * wi.z.abs();
+    let (f, pdf_bsdf_solid_angle) = surface.bsdf.eval_with_pdf(wo, wi);
+    let f_cos = f * wi.z.abs();
     if f_cos == Vec3::ZERO || sample.radiance == Vec3::ZERO {
         return None;
     }
@@ -71,6 +77,8 @@ fn evaluate(
         f_cos,
         weight: 0.0,
         pdf_for_mis: pmf * sample.pdf_solid_angle,
+        wi_local: wi,
+        pdf_bsdf_solid_angle,
     })
 }
 

@@ -234,8 +234,12 @@ impl PathIntegrator {
         let mis_weight = if sample.is_delta {
             1.0
         } else {
-            let wi = surface.frame.to_local(sample.wi);
-            self.heuristic(chosen.pdf_for_mis, self.direction_pdf(surface, wo, wi))
+            let pdf_direction = if self.settings.sample_bsdf {
+                chosen.pdf_bsdf_solid_angle
+            } else {
+                uniform_direction_pdf(surface.bsdf, wo, chosen.wi_local)
+            };
+            self.heuristic(chosen.pdf_for_mis, pdf_direction)
         };
         chosen.f_cos * sample.radiance * (chosen.weight * mis_weight)
     }
@@ -268,15 +272,6 @@ impl PathIntegrator {
                 is_delta: false,
                 eta: 1.0,
             })
-        }
-    }
-
-    /// Density per steradian with which [`Self::next_direction`] produces `wi`.
-    fn direction_pdf(&self, surface: &SurfaceHit<'_>, wo: Vec3, wi: Vec3) -> f32 {
-        if self.settings.sample_bsdf {
-            surface.bsdf.pdf_solid_angle(wo, wi)
-        } else {
-            uniform_direction_pdf(surface.bsdf, wo, wi)
         }
     }
 

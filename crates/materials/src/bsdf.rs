@@ -68,6 +68,18 @@ impl Bsdf {
         }
     }
 
+    /// [`Self::eval`] and [`Self::pdf_solid_angle`] in one call, which shares the work the two
+    /// have in common (a rough conductor's half vector and D): the same values as the two calls.
+    #[inline]
+    pub fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        match self {
+            Self::Diffuse(b) => b.eval_with_pdf(wo, wi),
+            Self::RoughConductor(b) => b.eval_with_pdf(wo, wi),
+            Self::TwoSided(b) => b.eval_with_pdf(wo, wi),
+            Self::Conductor(_) | Self::Dielectric(_) => (Vec3::ZERO, 0.0),
+        }
+    }
+
     /// Importance-samples a direction `wi` for `wo`. `u_lobe` ∈ [0, 1) chooses among lobes (the
     /// dielectric's reflection or refraction), `u_dir` ∈ [0, 1)² the direction within the lobe.
     /// `None` when there is no valid direction (e.g. `wo` behind a one-sided BSDF, or a rough

@@ -42,6 +42,12 @@ impl Diffuse {
         }
     }
 
+    /// [`Self::eval`] and [`Self::pdf_solid_angle`] together.
+    #[inline]
+    pub fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        (self.eval(wo, wi), self.pdf_solid_angle(wo, wi))
+    }
+
     /// A cosine-weighted direction from `u_dir`; `None` when `wo` is not above the surface.
     #[inline]
     pub fn sample(&self, wo: Vec3, u_dir: Vec2) -> Option<BsdfSample> {

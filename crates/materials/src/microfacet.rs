@@ -152,7 +152,12 @@ impl Microfacet {
         if wo.z <= 0.0 {
             return 0.0;
         }
-        self.d(m) * self.smith_g1_exact(wo, m) * wo.dot(m).abs() / wo.z
+        self.visible_normal_pdf_given_d(wo, m, self.d(m))
+    }
+
+    /// [`Self::visible_normal_pdf`] for `wo.z > 0` when `d` is already known to be `D(m)`.
+    pub(crate) fn visible_normal_pdf_given_d(&self, wo: Vec3, m: Vec3, d: f32) -> f32 {
+        d * self.smith_g1_exact(wo, m) * wo.dot(m).abs() / wo.z
     }
 
     /// A microfacet normal visible from `wo` (`wo.z > 0`), distributed by D_wo, with its density

@@ -58,6 +58,22 @@ impl RoughConductor {
         self.distribution.visible_normal_pdf(wo, h) / (4.0 * wo.dot(h))
     }
 
+    /// [`Self::eval`] and [`Self::pdf_solid_angle`] together, sharing the half vector and D(h):
+    /// the same values as the two calls.
+    pub fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return (Vec3::ZERO, 0.0);
+        }
+        let h = (wo + wi).normalize();
+        let d = self.distribution.d(h);
+        let pdf = if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 {
+            0.0
+        } else {
+            self.distribution.visible_normal_pdf_given_d(wo, h, d) / (4.0 * wo.dot(h))
+        };
+        (self.eval_given_d(wo, wi, h, d), pdf)
+    }
+
     /// Reflects `wo` about a visible microfacet normal sampled from `u_dir`. `None` when `wo` is
     /// not above the surface or the reflected direction falls below it.
     pub fn sample(&self, wo: Vec3, u_dir: Vec2) -> Option<BsdfSample> {
@@ -80,7 +96,11 @@ impl RoughConductor {
 
     /// The model's value for directions above the surface and their half vector `h`.
     fn eval_with_normal(&self, wo: Vec3, wi: Vec3, h: Vec3) -> Vec3 {
-        let d = self.distribution.d(h);
+        self.eval_given_d(wo, wi, h, self.distribution.d(h))
+    }
+
+    /// [`Self::eval_with_normal`] when `d` is already known to be `D(h)`.
+    fn eval_given_d(&self, wo: Vec3, wi: Vec3, h: Vec3, d: f32) -> Vec3 {
         if d == 0.0 {
             return Vec3::ZERO;
         }

@@ -65,6 +65,12 @@ impl TwoSided {
         bsdf.pdf_solid_angle(mirror_if(wo, mirrored), mirror_if(wi, mirrored))
     }
 
+    /// The facing BSDF's `eval_with_pdf`, both directions mirrored for the back.
+    pub fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        let (bsdf, mirrored) = self.facing(wo);
+        bsdf.eval_with_pdf(mirror_if(wo, mirrored), mirror_if(wi, mirrored))
+    }
+
     /// The facing BSDF's `sample` for the (mirrored) `wo`, the direction mirrored back to `wo`'s
     /// side.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {

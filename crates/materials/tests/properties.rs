@@ -97,6 +97,26 @@ fn close(a: f32, b: f32, relative: f32) -> bool {
 }
 
 #[test]
+fn eval_with_pdf_is_eval_and_pdf_to_the_bit() {
+    // Directions over the whole sphere (above, below, grazing), so every early return is taken.
+    let mut rng = Rng::new(41);
+    for (name, bsdf) in all_bsdfs() {
+        for i in 0..2_000 {
+            let wo = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let wi = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let (f, pdf) = bsdf.eval_with_pdf(wo, wi);
+            let (f_alone, pdf_alone) = (bsdf.eval(wo, wi), bsdf.pdf_solid_angle(wo, wi));
+            assert!(
+                f.to_array().map(f32::to_bits) == f_alone.to_array().map(f32::to_bits)
+                    && pdf.to_bits() == pdf_alone.to_bits(),
+                "{name}, pair {i} (seed 41), wo {wo}, wi {wi}: ({f}, {pdf}) against \
+                 ({f_alone}, {pdf_alone})"
+            );
+        }
+    }
+}
+
+#[test]
 fn sample_value_and_pdf_equal_eval_and_pdf() {
     let mut rng = Rng::new(2024);
     for (name, bsdf) in non_delta_bsdfs() {
