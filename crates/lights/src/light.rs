@@ -100,17 +100,28 @@ impl Light {
         matches!(self, Light::Point(_))
     }
 
+    /// A sphere (centre, radius; world units) holding the light's emitting surface or point
+    /// (radius 0); `None` for the environment, which surrounds everything.
+    pub fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
+        match self {
+            Light::Mesh(l) => Some(l.bounding_sphere()),
+            Light::Sphere(l) => Some((l.center, l.radius)),
+            Light::Point(l) => Some((l.position, 0.0)),
+            Light::Environment(_) => None,
+        }
+    }
+
     /// Irradiance (W m⁻², mean over channels) that the light could deliver at most, roughly, to a
     /// surface at `p` with unit normal `n`, either side: power / (4π max(d², r²)) for a light
     /// inside a sphere of radius r at distance d, times a bound on |cos θ| over that sphere; π
     /// times the radiance for the environment. Zero only where the light cannot reach `p`'s
     /// tangent plane from either side; the target of resampled light selection.
     pub fn irradiance_estimate(&self, p: Vec3, n: Vec3) -> f32 {
-        let (center, radius) = match self {
-            Light::Mesh(l) => l.bounding_sphere(),
-            Light::Sphere(l) => (l.center, l.radius),
-            Light::Point(l) => (l.position, 0.0),
-            Light::Environment(l) => return PI * mean_rgb(l.radiance),
+        if let Light::Environment(l) = self {
+            return PI * mean_rgb(l.radiance);
+        }
+        let Some((center, radius)) = self.bounding_sphere() else {
+            return 0.0;
         };
         let to_center = center - p;
         let d2 = to_center.length_squared();

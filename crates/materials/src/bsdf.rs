@@ -80,6 +80,30 @@ impl Bsdf {
         }
     }
 
+    /// Whether the BSDF has a glossy lobe, whose reflection depends strongly on the direction
+    /// without being a delta (a rough conductor, or a twosided with one on either side): where
+    /// [`Self::lobe_weight`] is given.
+    pub fn is_glossy(&self) -> bool {
+        match self {
+            Self::RoughConductor(_) => true,
+            Self::TwoSided(b) => b.front().is_glossy() || b.back().is_glossy(),
+            Self::Diffuse(_) | Self::Conductor(_) | Self::Dielectric(_) => false,
+        }
+    }
+
+    /// For choosing among lights by resampling: a cheap positive estimate of f · cos θi towards
+    /// `wi`, sr⁻¹ (a rough conductor's [`RoughConductor::lobe_weight`]), or `None` for BSDFs
+    /// whose reflection varies little with the direction (diffuse) or has no density (delta
+    /// lobes), where the light's irradiance alone should decide.
+    #[inline]
+    pub fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        match self {
+            Self::RoughConductor(b) => Some(b.lobe_weight(wo, wi)),
+            Self::TwoSided(b) => b.lobe_weight(wo, wi),
+            Self::Diffuse(_) | Self::Conductor(_) | Self::Dielectric(_) => None,
+        }
+    }
+
     /// Importance-samples a direction `wi` for `wo`. `u_lobe` ∈ [0, 1) chooses among lobes (the
     /// dielectric's reflection or refraction), `u_dir` ∈ [0, 1)² the direction within the lobe.
     /// `None` when there is no valid direction (e.g. `wo` behind a one-sided BSDF, or a rough

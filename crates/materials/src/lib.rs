@@ -45,5 +45,5 @@ pub use diffuse::Diffuse;
 pub use error::MaterialError;
 pub use fresnel::ComplexIor;
 pub use microfacet::{Microfacet, MicrofacetKind};
-pub use rough_conductor::RoughConductor;
+pub use rough_conductor::{LOBE_WEIGHT_FLOOR, RoughConductor};
 pub use two_sided::TwoSided;

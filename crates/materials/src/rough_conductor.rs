@@ -6,6 +6,11 @@ use crate::fresnel::{ComplexIor, fresnel_conductor, reflect_about};
 use crate::microfacet::Microfacet;
 use glam::{Vec2, Vec3};
 
+/// What [`RoughConductor::lobe_weight`] adds to every direction, sr⁻¹: a tenth of a white
+/// diffuse surface's f · cos θi at normal incidence (1/π), so that a light outside the lobe is
+/// rarely chosen but never never.
+pub const LOBE_WEIGHT_FLOOR: f32 = 0.1;
+
 /// One-sided microfacet reflection f = F(wo·h) D(h) G1(wo, h) G1(wi, h) / (4 cos θo cos θi),
 /// h = normalize(wo + wi), times `specular_reflectance`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -72,6 +77,17 @@ impl RoughConductor {
             self.distribution.visible_normal_pdf_given_d(wo, h, d) / (4.0 * wo.dot(h))
         };
         (self.eval_given_d(wo, wi, h, d), pdf)
+    }
+
+    /// A cheap positive estimate of f · cos θi towards `wi`, sr⁻¹, for choosing among lights:
+    /// D(h) / (4 cos θo), which leaves out of f · cos θi = F D G / (4 cos θo) the factors that
+    /// vary little (F, G ≤ 1), plus [`LOBE_WEIGHT_FLOOR`] so that no direction gets zero; the
+    /// floor alone when either direction is below the surface.
+    pub fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return LOBE_WEIGHT_FLOOR;
+        }
+        self.distribution.d((wo + wi).normalize()) / (4.0 * wo.z) + LOBE_WEIGHT_FLOOR
     }
 
     /// Reflects `wo` about a visible microfacet normal sampled from `u_dir`. `None` when `wo` is

@@ -71,6 +71,12 @@ impl TwoSided {
         bsdf.eval_with_pdf(mirror_if(wo, mirrored), mirror_if(wi, mirrored))
     }
 
+    /// The facing BSDF's `lobe_weight`, both directions mirrored for the back.
+    pub fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        let (bsdf, mirrored) = self.facing(wo);
+        bsdf.lobe_weight(mirror_if(wo, mirrored), mirror_if(wi, mirrored))
+    }
+
     /// The facing BSDF's `sample` for the (mirrored) `wo`, the direction mirrored back to `wo`'s
     /// side.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {

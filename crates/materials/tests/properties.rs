@@ -7,6 +7,7 @@ mod fixtures;
 
 use fixtures::{ALPHAS, INCIDENCE_DEGREES, gold, incidence, rough_conductor};
 use glam::{Vec2, Vec3};
+use materials::LOBE_WEIGHT_FLOOR;
 use materials::fresnel::{fresnel_conductor, reflect};
 use materials::{
     Bsdf, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind,
@@ -94,6 +95,53 @@ fn weight(s: &BsdfSample) -> Vec3 {
 
 fn close(a: f32, b: f32, relative: f32) -> bool {
     (a - b).abs() <= relative * a.abs().max(b.abs()) + 1e-12
+}
+
+#[test]
+fn lobe_weights_are_positive_everywhere_and_peak_at_the_mirror_direction() {
+    // Given only by glossy BSDFs (a twosided one on its glossy side), and then at least the
+    // floor in every direction (RIS needs a positive target wherever a light may contribute);
+    // for a rough conductor much larger towards the mirror direction than 80 degrees away from
+    // it, and within a factor of the true f cos θi there (F and G are left out, both at
+    // most 1).
+    let mut rng = Rng::new(43);
+    for (name, bsdf) in all_bsdfs() {
+        let mut given = 0;
+        for i in 0..1_000 {
+            let wo = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let wi = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let Some(weight) = bsdf.lobe_weight(wo, wi) else {
+                continue;
+            };
+            given += 1;
+            assert!(
+                bsdf.is_glossy() && weight >= LOBE_WEIGHT_FLOOR && weight.is_finite(),
+                "{name}, pair {i} (seed 43), wo {wo}, wi {wi}: {weight}"
+            );
+        }
+        assert_eq!(given > 0, bsdf.is_glossy(), "{name}: {given} of 1000 given");
+    }
+    for alpha in [0.05, 0.2] {
+        let bsdf = rough_conductor(MicrofacetKind::Ggx, alpha, gold());
+        let wo = incidence(40.0);
+        let mirror = Vec3::new(-wo.x, -wo.y, wo.z);
+        // Back towards the viewer: 80 degrees from the mirror direction.
+        let away = wo;
+        let (at_mirror, at_away) = (
+            bsdf.lobe_weight(wo, mirror).expect("glossy"),
+            bsdf.lobe_weight(wo, away).expect("glossy"),
+        );
+        assert!(
+            at_mirror > 20.0 * at_away,
+            "alpha {alpha}: {at_mirror} vs {at_away}"
+        );
+        let f_cos = bsdf.eval(wo, mirror) * mirror.z;
+        let f_cos = (f_cos.x + f_cos.y + f_cos.z) / 3.0;
+        assert!(
+            f_cos <= at_mirror && at_mirror < 3.0 * f_cos,
+            "alpha {alpha}: lobe weight {at_mirror}, f cos {f_cos}"
+        );
+    }
 }
 
 #[test]

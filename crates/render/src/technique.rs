@@ -18,6 +18,12 @@ pub const RIS_CANDIDATES: u32 = 4;
 /// With at least this many lights, `auto` selects lights by RIS rather than by power.
 pub const AUTO_RIS_MIN_LIGHTS: usize = 16;
 
+/// With glossy materials and at least this many lights that rays can hit, `auto` selects
+/// lights by RIS, whose target there follows the glossy lobe: on Veach's scene (five such
+/// lights) efficiency 1.3–1.4× over power-proportional selection. With fewer (the point-light
+/// scene: one point light and the environment) RIS is 3.3× worse than power there.
+pub const AUTO_RIS_MIN_GLOSSY_LIGHTS: usize = 2;
+
 /// Nominal sample count given to samplers when only a time budget bounds the render: strata are
 /// laid out for this many samples, and any prefix of them is still unbiased.
 pub const TIME_BUDGET_NOMINAL_SPP: u32 = 4096;
@@ -171,12 +177,15 @@ pub fn plan_from_flags(scene: &RenderScene, flags: &[&str]) -> Result<RenderPlan
 
 /// `auto`: the MIS preset minus what the scene cannot use. No light sampling where every BSDF
 /// is a delta or there are no lights; no MIS where every light is a delta light; uniform choice
-/// (no table) for one light, RIS for many.
+/// (no table) for one light, RIS for many, and for several hittable lights seen in glossy
+/// materials.
 pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSettings {
     let sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
+    let glossy_choice =
+        features.has_glossy_bsdfs && features.hittable_light_count >= AUTO_RIS_MIN_GLOSSY_LIGHTS;
     let light_selection = match features.light_count {
         0 | 1 => LightSelectionMode::Uniform,
-        n if n >= AUTO_RIS_MIN_LIGHTS => LightSelectionMode::Ris {
+        n if n >= AUTO_RIS_MIN_LIGHTS || glossy_choice => LightSelectionMode::Ris {
             candidates: RIS_CANDIDATES,
         },
         _ => LightSelectionMode::Power,
@@ -204,4 +213,52 @@ pub fn light_tracing_applies(features: &SceneFeatures) -> bool {
 /// A 64-bit seed from the command line folded into the sampler's 32 bits.
 fn fold_seed(seed: u64) -> u32 {
     (seed as u32) ^ ((seed >> 32) as u32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn features(lights: usize, hittable: usize, glossy: bool) -> SceneFeatures {
+        SceneFeatures {
+            light_count: lights,
+            has_hittable_lights: hittable > 0,
+            has_delta_lights: hittable < lights,
+            has_non_delta_bsdfs: true,
+            has_delta_bsdfs: false,
+            hittable_light_count: hittable,
+            has_glossy_bsdfs: glossy,
+        }
+    }
+
+    fn selection(features: &SceneFeatures) -> LightSelectionMode {
+        let mis = PathSettings {
+            max_depth: Some(8),
+            hide_emitters: false,
+            sample_lights: true,
+            sample_bsdf: true,
+            mis: Mis::Power,
+            light_selection: LightSelectionMode::Power,
+            russian_roulette: None,
+            light_tracing: false,
+        };
+        auto_settings(mis, features).light_selection
+    }
+
+    #[test]
+    fn auto_resamples_lights_for_many_lights_and_for_several_seen_in_glossy_materials() {
+        let ris = LightSelectionMode::Ris {
+            candidates: RIS_CANDIDATES,
+        };
+        assert_eq!(
+            selection(&features(1, 1, true)),
+            LightSelectionMode::Uniform
+        );
+        // Veach's scene: four spheres and the environment on rough metal.
+        assert_eq!(selection(&features(5, 5, true)), ris);
+        assert_eq!(selection(&features(5, 5, false)), LightSelectionMode::Power);
+        // The point-light scene: a point light and the environment on rough metal.
+        assert_eq!(selection(&features(2, 1, true)), LightSelectionMode::Power);
+        assert_eq!(selection(&features(AUTO_RIS_MIN_LIGHTS, 16, false)), ris);
+    }
 }

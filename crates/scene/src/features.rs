@@ -14,6 +14,10 @@ pub struct SceneFeatures {
     pub has_delta_lights: bool,
     /// True when some material has a non-delta lobe (diffuse, rough conductor).
     pub has_non_delta_bsdfs: bool,
+    /// Number of lights that a ray can hit (area lights and the environment).
+    pub hittable_light_count: usize,
+    /// True when some material has a glossy lobe ([`Bsdf::is_glossy`]: a rough conductor).
+    pub has_glossy_bsdfs: bool,
     /// True when some material has a delta lobe (mirror, smooth dielectric, or a twosided
     /// with one on either side).
     pub has_delta_bsdfs: bool,
@@ -28,6 +32,8 @@ impl SceneFeatures {
             has_delta_lights: lights.iter().any(Light::is_delta),
             has_non_delta_bsdfs: materials.iter().any(|m| !m.is_delta()),
             has_delta_bsdfs: materials.iter().any(Bsdf::has_delta_lobe),
+            hittable_light_count: lights.iter().filter(|l| !l.is_delta()).count(),
+            has_glossy_bsdfs: materials.iter().any(Bsdf::is_glossy),
         }
     }
 }

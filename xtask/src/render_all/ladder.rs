@@ -179,6 +179,8 @@ mod tests {
             has_delta_lights,
             has_non_delta_bsdfs: true,
             has_delta_bsdfs: false,
+            hittable_light_count: if has_delta_lights { 0 } else { light_count },
+            has_glossy_bsdfs: false,
         }
     }
 
