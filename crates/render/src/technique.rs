@@ -233,14 +233,9 @@ mod tests {
 
     fn selection(features: &SceneFeatures) -> LightSelectionMode {
         let mis = PathSettings {
-            max_depth: Some(8),
-            hide_emitters: false,
             sample_lights: true,
-            sample_bsdf: true,
             mis: Mis::Power,
-            light_selection: LightSelectionMode::Power,
-            russian_roulette: None,
-            light_tracing: false,
+            ..PathSettings::default()
         };
         auto_settings(mis, features).light_selection
     }
