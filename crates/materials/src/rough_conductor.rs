@@ -6,9 +6,9 @@ use crate::fresnel::{ComplexIor, fresnel_conductor, reflect_about};
 use crate::microfacet::Microfacet;
 use glam::{Vec2, Vec3};
 
-/// What [`RoughConductor::lobe_weight`] adds to every direction, sr⁻¹: a tenth of a white
-/// diffuse surface's f · cos θi at normal incidence (1/π), so that a light outside the lobe is
-/// rarely chosen but never never.
+/// What [`RoughConductor::lobe_weight`] adds to every direction, sr⁻¹: about a third of a white
+/// diffuse surface's f · cos θi at normal incidence (1/π ≈ 0.32), so that a light outside the
+/// lobe is chosen rarely but not never.
 pub const LOBE_WEIGHT_FLOOR: f32 = 0.1;
 
 /// One-sided microfacet reflection f = F(wo·h) D(h) G1(wo, h) G1(wi, h) / (4 cos θo cos θi),
