@@ -192,7 +192,7 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
     };
     PathSettings {
         sample_lights,
-        mis: if sample_lights && features.has_hittable_lights {
+        mis: if sample_lights && features.has_hittable_lights() {
             Mis::Power
         } else {
             Mis::Off
@@ -207,7 +207,7 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
 /// through a sampled point of its aperture) and any reconstruction filter (a light path splats
 /// into every pixel whose camera samples can reach its film position, weighted by the filter).
 pub fn light_tracing_applies(features: &SceneFeatures) -> bool {
-    features.has_delta_bsdfs && features.has_hittable_lights
+    features.has_delta_bsdfs && features.has_hittable_lights()
 }
 
 /// A 64-bit seed from the command line folded into the sampler's 32 bits.
@@ -222,8 +222,6 @@ mod tests {
     fn features(lights: usize, hittable: usize, glossy: bool) -> SceneFeatures {
         SceneFeatures {
             light_count: lights,
-            has_hittable_lights: hittable > 0,
-            has_delta_lights: hittable < lights,
             has_non_delta_bsdfs: true,
             has_delta_bsdfs: false,
             hittable_light_count: hittable,

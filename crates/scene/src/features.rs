@@ -8,10 +8,6 @@ use materials::Bsdf;
 pub struct SceneFeatures {
     /// Number of lights (area, point and environment).
     pub light_count: usize,
-    /// True when some light can be hit by a ray (area lights, environment).
-    pub has_hittable_lights: bool,
-    /// True when some light is a delta light (point lights).
-    pub has_delta_lights: bool,
     /// True when some material has a non-delta lobe (diffuse, rough conductor).
     pub has_non_delta_bsdfs: bool,
     /// Number of lights that a ray can hit (area lights and the environment).
@@ -24,12 +20,20 @@ pub struct SceneFeatures {
 }
 
 impl SceneFeatures {
+    /// True when some light can be hit by a ray (area lights, environment).
+    pub fn has_hittable_lights(&self) -> bool {
+        self.hittable_light_count > 0
+    }
+
+    /// True when some light is a delta light (point lights), which no ray can hit.
+    pub fn has_delta_lights(&self) -> bool {
+        self.hittable_light_count < self.light_count
+    }
+
     /// The features of a scene with these materials and lights.
     pub fn of(materials: &[Bsdf], lights: &[Light]) -> Self {
         Self {
             light_count: lights.len(),
-            has_hittable_lights: lights.iter().any(|l| !l.is_delta()),
-            has_delta_lights: lights.iter().any(Light::is_delta),
             has_non_delta_bsdfs: materials.iter().any(|m| !m.is_delta()),
             has_delta_bsdfs: materials.iter().any(Bsdf::has_delta_lobe),
             hittable_light_count: lights.iter().filter(|l| !l.is_delta()).count(),

@@ -85,7 +85,7 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
         mis: Mis::Off,
         ..mis
     };
-    if features.light_count > 0 && !features.has_delta_lights {
+    if features.light_count > 0 && !features.has_delta_lights() {
         rungs.push(rung("bsdf", no_nee, independent));
     }
     let can_sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
@@ -98,11 +98,11 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
             },
             independent,
         ));
-        if features.has_hittable_lights {
+        if features.has_hittable_lights() {
             rungs.push(rung("mis", mis, independent));
         }
     }
-    let best = if can_sample_lights && features.has_hittable_lights {
+    let best = if can_sample_lights && features.has_hittable_lights() {
         mis
     } else if can_sample_lights {
         PathSettings {
@@ -175,8 +175,6 @@ mod tests {
     fn features(light_count: usize, has_delta_lights: bool) -> SceneFeatures {
         SceneFeatures {
             light_count,
-            has_hittable_lights: !has_delta_lights,
-            has_delta_lights,
             has_non_delta_bsdfs: true,
             has_delta_bsdfs: false,
             hittable_light_count: if has_delta_lights { 0 } else { light_count },
