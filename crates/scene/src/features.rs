@@ -10,8 +10,10 @@ pub struct SceneFeatures {
     pub light_count: usize,
     /// True when some material has a non-delta lobe (diffuse, rough conductor).
     pub has_non_delta_bsdfs: bool,
-    /// Number of lights that a ray can hit (area lights and the environment).
-    pub hittable_light_count: usize,
+    /// Number of area lights (on meshes and spheres): lights with a place that rays can hit.
+    pub area_light_count: usize,
+    /// True when the scene has an environment emitter.
+    pub has_environment: bool,
     /// True when some material has a glossy lobe ([`Bsdf::is_glossy`]: a rough conductor).
     pub has_glossy_bsdfs: bool,
     /// True when some material has a delta lobe (mirror, smooth dielectric, or a twosided
@@ -22,12 +24,12 @@ pub struct SceneFeatures {
 impl SceneFeatures {
     /// True when some light can be hit by a ray (area lights, environment).
     pub fn has_hittable_lights(&self) -> bool {
-        self.hittable_light_count > 0
+        self.area_light_count > 0 || self.has_environment
     }
 
     /// True when some light is a delta light (point lights), which no ray can hit.
     pub fn has_delta_lights(&self) -> bool {
-        self.hittable_light_count < self.light_count
+        self.area_light_count + usize::from(self.has_environment) < self.light_count
     }
 
     /// The features of a scene with these materials and lights.
@@ -36,7 +38,11 @@ impl SceneFeatures {
             light_count: lights.len(),
             has_non_delta_bsdfs: materials.iter().any(|m| !m.is_delta()),
             has_delta_bsdfs: materials.iter().any(Bsdf::has_delta_lobe),
-            hittable_light_count: lights.iter().filter(|l| !l.is_delta()).count(),
+            area_light_count: lights
+                .iter()
+                .filter(|l| matches!(l, Light::Mesh(_) | Light::Sphere(_)))
+                .count(),
+            has_environment: lights.iter().any(|l| matches!(l, Light::Environment(_))),
             has_glossy_bsdfs: materials.iter().any(Bsdf::is_glossy),
         }
     }

@@ -177,7 +177,8 @@ mod tests {
             light_count,
             has_non_delta_bsdfs: true,
             has_delta_bsdfs: false,
-            hittable_light_count: if has_delta_lights { 0 } else { light_count },
+            area_light_count: if has_delta_lights { 0 } else { light_count },
+            has_environment: false,
             has_glossy_bsdfs: false,
         }
     }
