@@ -102,6 +102,14 @@ impl Subject {
         }
     }
 
+    /// [`Self::mis`] with the scene's Russian roulette.
+    fn mis_with_roulette(&self) -> PathSettings {
+        PathSettings {
+            russian_roulette: Some(self.roulette()),
+            ..self.mis()
+        }
+    }
+
     /// MIS with the power heuristic, power-proportional selection, no roulette.
     fn mis(&self) -> PathSettings {
         PathSettings {
@@ -442,11 +450,7 @@ fn samplers(root: &Path, name: &str) -> Result<Claim, String> {
 fn roulette_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "cbox")?;
     let spp = 32;
-    let without = subject.mis();
-    let with = PathSettings {
-        russian_roulette: Some(subject.roulette()),
-        ..without
-    };
+    let (without, with) = (subject.mis(), subject.mis_with_roulette());
     Ok(efficiency_claim(
         "Russian roulette improves efficiency on the Cornell box",
         spp,
@@ -462,10 +466,7 @@ fn roulette_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
 fn adaptive_on_veach(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "veach-mis")?;
     let spp = 128;
-    let transport = Transport::Path(PathSettings {
-        russian_roulette: Some(subject.roulette()),
-        ..subject.mis()
-    });
+    let transport = Transport::Path(subject.mis_with_roulette());
     let plan = |adaptive| {
         move |seed| RenderPlan {
             adaptive,
@@ -489,10 +490,7 @@ fn adaptive_on_veach(root: &Path) -> Result<Claim, String> {
 fn glossy_light_choice_on_veach(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "veach-mis")?;
     let spp = 128;
-    let power = PathSettings {
-        russian_roulette: Some(subject.roulette()),
-        ..subject.mis()
-    };
+    let power = subject.mis_with_roulette();
     let ris = PathSettings {
         light_selection: LightSelectionMode::Ris {
             candidates: RIS_CANDIDATES,
@@ -520,10 +518,7 @@ fn glossy_light_choice_on_veach(root: &Path) -> Result<Claim, String> {
 fn light_tracing_on_the_glass_box(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "cbox-glass")?;
     let spp = 32;
-    let without = PathSettings {
-        russian_roulette: Some(subject.roulette()),
-        ..subject.mis()
-    };
+    let without = subject.mis_with_roulette();
     let with = PathSettings {
         light_tracing: true,
         ..without

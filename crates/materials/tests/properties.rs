@@ -78,9 +78,14 @@ fn all_bsdfs() -> Vec<(String, Bsdf)> {
     all
 }
 
+/// A random unit direction, uniform over the sphere.
+fn random_direction(rng: &mut Rng) -> Vec3 {
+    sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()))
+}
+
 /// A random unit direction (uniform over the sphere), flipped into the upper hemisphere.
 fn random_upper_direction(rng: &mut Rng) -> Vec3 {
-    let w = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+    let w = random_direction(rng);
     Vec3::new(w.x, w.y, w.z.abs())
 }
 
@@ -108,8 +113,7 @@ fn lobe_weights_are_positive_everywhere_and_peak_at_the_mirror_direction() {
     for (name, bsdf) in all_bsdfs() {
         let mut given = 0;
         for i in 0..1_000 {
-            let wo = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
-            let wi = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let (wo, wi) = (random_direction(&mut rng), random_direction(&mut rng));
             let Some(weight) = bsdf.lobe_weight(wo, wi) else {
                 continue;
             };
@@ -150,8 +154,7 @@ fn eval_with_pdf_is_eval_and_pdf_to_the_bit() {
     let mut rng = Rng::new(41);
     for (name, bsdf) in all_bsdfs() {
         for i in 0..2_000 {
-            let wo = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
-            let wi = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let (wo, wi) = (random_direction(&mut rng), random_direction(&mut rng));
             let (f, pdf) = bsdf.eval_with_pdf(wo, wi);
             let (f_alone, pdf_alone) = (bsdf.eval(wo, wi), bsdf.pdf_solid_angle(wo, wi));
             assert!(
