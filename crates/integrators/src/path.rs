@@ -81,6 +81,25 @@ impl PathIntegrator {
         &self.settings
     }
 
+    /// The sampler dimensions [`Self::radiance`] draws at its first `vertices` path vertices, in
+    /// the order of the module documentation: a dimension is one `next_1d` or `next_2d` call. A
+    /// path that ends sooner draws fewer, never other ones.
+    pub fn sampler_dimensions(&self, vertices: u32) -> u32 {
+        let settings = &self.settings;
+        let per_vertex = u32::from(settings.sample_lights)
+            * (1 + u32::from(self.draws_light_choice))
+            + u32::from(self.draws_lobe_choice)
+            + 1;
+        (1..=vertices)
+            .map(|depth| {
+                let roulette = settings
+                    .russian_roulette
+                    .is_some_and(|r| depth >= r.start_depth);
+                per_vertex + u32::from(roulette)
+            })
+            .sum()
+    }
+
     /// Radiance (W m⁻² sr⁻¹, RGB) arriving at the camera along `camera_ray`: one path's estimate.
     pub fn radiance(
         &self,

@@ -11,7 +11,8 @@ use glam::{UVec2, Vec2, Vec3};
 use integrators::{LightTracer, PathIntegrator, RayCounters, RayLog, RayTally, reference};
 use sampling::Sampler;
 use sampling::sampler::{
-    BlueNoiseSampler, IndependentSampler, SamplerKind, SobolSampler, StratifiedSampler,
+    BlueNoiseSampler, IndependentSampler, PrefixSampler, SamplerKind, SobolSampler,
+    StratifiedSampler,
 };
 use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -145,17 +146,78 @@ fn render_image<T: RayTally + Default + Send>(
     Ok(output)
 }
 
+/// Path vertices whose sampler dimensions come from the sampler's pattern (with the camera's);
+/// deeper vertices draw independent numbers ([`PrefixSampler`]). On the Cornell box (128 spp,
+/// Sobol, four seeds) the relMSE × spp was 0.1408 with every dimension from the pattern, 0.1400
+/// with two vertices and 0.1436 with one, while the deeper dimensions cost 3% of the render's
+/// instructions.
+pub const PATTERN_VERTICES: u32 = 2;
+
 /// [`render_image`] without a pilot, as `context` says. The per-sample code is compiled once per
 /// sampler type, so that sampling is inlined into the integrator rather than dispatched per call.
 fn render_sampled<T: RayTally + Default + Send>(
     context: &Context<'_, T>,
 ) -> Result<RenderOutput, BudgetError> {
     let (seed, spp) = (context.plan.seed, context.plan.sampler_spp);
+    let transport = Built::new(context.scene, context.plan);
+    let prefix = transport.pattern_dimensions(context.scene.camera.has_lens());
     match context.plan.sampler {
-        SamplerKind::Independent => render_with(context, || IndependentSampler::new(seed, spp)),
-        SamplerKind::Stratified => render_with(context, || StratifiedSampler::new(seed, spp)),
-        SamplerKind::BlueNoise => render_with(context, || BlueNoiseSampler::new(seed, spp)),
-        SamplerKind::Sobol => render_with(context, || SobolSampler::new(seed, spp)),
+        SamplerKind::Independent => {
+            render_with(context, &transport, || IndependentSampler::new(seed, spp))
+        }
+        SamplerKind::Stratified => render_with(context, &transport, || {
+            PrefixSampler::new(StratifiedSampler::new(seed, spp), prefix, seed)
+        }),
+        SamplerKind::BlueNoise => render_with(context, &transport, || {
+            PrefixSampler::new(BlueNoiseSampler::new(seed, spp), prefix, seed)
+        }),
+        SamplerKind::Sobol => render_with(context, &transport, || {
+            PrefixSampler::new(SobolSampler::new(seed, spp), prefix, seed)
+        }),
+    }
+}
+
+/// The integrator a render runs and, with caustics by light tracing, its light tracer.
+struct Built {
+    integrator: Integrator,
+    light_tracer: Option<LightTracer>,
+}
+
+impl Built {
+    fn new(scene: &RenderScene, plan: &RenderPlan) -> Self {
+        let world = &scene.world;
+        match plan.transport {
+            Transport::Reference(settings) => Self {
+                integrator: Integrator::Reference(settings),
+                light_tracer: None,
+            },
+            Transport::Path(mut settings) => {
+                let light_tracer = if settings.light_tracing {
+                    LightTracer::new(world, &settings, scene.camera.has_lens())
+                } else {
+                    None
+                };
+                // Without the tracer the path tracer must keep every path.
+                settings.light_tracing = light_tracer.is_some();
+                Self {
+                    integrator: Integrator::Path(PathIntegrator::new(world, settings)),
+                    light_tracer,
+                }
+            }
+        }
+    }
+
+    /// The leading dimensions of each pixel sample drawn from the sampler's pattern: the
+    /// camera's (film position, and the lens point with a lens) and the first
+    /// [`PATTERN_VERTICES`] vertices' of the path tracer; all of them for the reference
+    /// integrator, which has no tricks. A light path drawn with the same sampler gets as many.
+    fn pattern_dimensions(&self, has_lens: bool) -> u32 {
+        match &self.integrator {
+            Integrator::Reference(_) => u32::MAX,
+            Integrator::Path(path) => {
+                1 + u32::from(has_lens) + path.sampler_dimensions(PATTERN_VERTICES)
+            }
+        }
     }
 }
 
@@ -192,9 +254,10 @@ impl<'a, T> Context<'a, T> {
     }
 }
 
-/// [`render_sampled`] with the samplers `new_sampler` makes.
+/// [`render_sampled`] with `transport` and the samplers `new_sampler` makes.
 fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     context: &Context<'_, T>,
+    transport: &Built,
     new_sampler: impl Fn() -> S + Sync + Send,
 ) -> Result<RenderOutput, BudgetError> {
     let Context {
@@ -208,22 +271,10 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     let world = &scene.world;
     let camera: &Camera = &scene.camera;
     let (width, height) = (scene.desc.film.width, scene.desc.film.height);
-    let (integrator, light_tracer) = match plan.transport {
-        Transport::Reference(settings) => (Integrator::Reference(settings), None),
-        Transport::Path(mut settings) => {
-            let tracer = if settings.light_tracing {
-                LightTracer::new(world, &settings, camera.has_lens())
-            } else {
-                None
-            };
-            // Without the tracer the path tracer must keep every path.
-            settings.light_tracing = tracer.is_some();
-            (
-                Integrator::Path(PathIntegrator::new(world, settings)),
-                tracer,
-            )
-        }
-    };
+    let Built {
+        integrator,
+        light_tracer,
+    } = transport;
     let trace_light_path = |worker: &mut Worker<'_, S, T>,
                             pixel: UVec2,
                             sample_index: u32,

@@ -2,7 +2,9 @@
 //! needs: per vertex the light choice (1D) only with more than one light, the light point (2D),
 //! the BSDF lobe (1D) only when some material chooses a lobe (a dielectric), the BSDF direction
 //! (2D), and the roulette number (1D) only from roulette's start depth. Every path's sequence of
-//! draws must be a prefix of that per-vertex pattern repeated; a path may stop anywhere in it.
+//! draws must be a prefix of that per-vertex pattern repeated; a path may stop anywhere in it, and
+//! `PathIntegrator::sampler_dimensions` (how many dimensions the renderer takes from the sampler's
+//! pattern) must count the same draws.
 
 mod common;
 
@@ -70,6 +72,13 @@ fn check(name: &str, light_choice: bool, lobe_choice: bool) -> usize {
         .flat_map(|d| vertex_pattern(d, light_choice, lobe_choice))
         .collect();
     let integrator = PathIntegrator::new(&scene.world, settings);
+    for vertices in 0..=depth {
+        assert_eq!(
+            integrator.sampler_dimensions(vertices) as usize,
+            draws_through(vertices, light_choice, lobe_choice),
+            "{name}: the dimensions the integrator reports for {vertices} vertices"
+        );
+    }
     let mut sampler = Recording {
         inner: IndependentSampler::new(5, 4),
         draws: Vec::new(),

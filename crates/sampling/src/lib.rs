@@ -51,6 +51,6 @@ pub use frame::Frame;
 pub use reservoir::Reservoir;
 pub use rng::Rng;
 pub use sampler::{
-    AnySampler, BlueNoiseSampler, IndependentSampler, Sampler, SamplerKind, SobolSampler,
-    StratifiedSampler,
+    AnySampler, BlueNoiseSampler, IndependentSampler, PrefixSampler, Sampler, SamplerKind,
+    SobolSampler, StratifiedSampler,
 };

@@ -20,17 +20,23 @@
 //! | [`StratifiedSampler`] | multi-jittered strata in every dimension | independent permutations |
 //! | [`BlueNoiseSampler`] | a rank-1 lattice (Kronecker) point set | blue-noise shifts: screen-space blue-noise error |
 //! | [`SobolSampler`] | Owen-scrambled Sobol (0, 2)-sequence: a net at every power-of-two prefix, any count | independent index shuffles and scrambles |
+//!
+//! [`PrefixSampler`] wraps any of them so that only the first dimensions of each pixel sample
+//! come from its pattern and the rest are independent numbers: the renderer stratifies the
+//! camera and the first bounces, where it pays, and draws deeper bounces cheaply.
 
 mod blue_noise;
 mod blue_noise_tile;
 mod independent;
 mod owen;
+mod prefix;
 mod sobol;
 mod strata;
 mod stratified;
 
 pub use blue_noise::BlueNoiseSampler;
 pub use independent::IndependentSampler;
+pub use prefix::PrefixSampler;
 pub use sobol::SobolSampler;
 pub use stratified::StratifiedSampler;
 
