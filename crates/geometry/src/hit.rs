@@ -1,6 +1,6 @@
 //! The record of a ray hitting a surface.
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// Where a ray hit a surface, as returned by [`crate::Accel::intersect`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,10 +15,10 @@ pub struct Hit {
     /// Unit shading normal: the interpolated vertex normals when the mesh has them, else `ng`.
     /// Always in the same hemisphere as `ng`.
     pub ns: Vec3,
-    /// Surface coordinates: the mesh's interpolated texture coordinates, or the barycentric
-    /// coordinates `(b1, b2)` of `p1` and `p2` when it has none; for a sphere `(phi / 2pi, theta / pi)`
-    /// with `phi` measured from +x towards +y and `theta` from +z.
-    pub uv: Vec2,
+    /// Barycentric coordinates `(b0, b1, b2)`: the weights of the triangle's vertices `p0`, `p1`,
+    /// `p2` at the hit (zero for a sphere). [`crate::Accel::uv`] turns them into surface
+    /// coordinates.
+    pub bary: Vec3,
     /// Index of the shape in the list given to [`crate::Accel::new`].
     pub shape: u32,
     /// Index of the triangle within its mesh (always 0 for a sphere).

@@ -37,12 +37,13 @@ fn degenerate_mesh() -> TriangleMesh {
     TriangleMesh::new(positions, None, None, indices).expect("indices are in range")
 }
 
-fn assert_finite(hit: &Hit, replay: &str) {
+fn assert_finite(accel: &Accel, hit: &Hit, replay: &str) {
     let finite = hit.t.is_finite()
         && hit.p.is_finite()
         && hit.ng.is_finite()
         && hit.ns.is_finite()
-        && hit.uv.is_finite();
+        && hit.bary.is_finite()
+        && accel.uv(hit).is_finite();
     assert!(finite, "{replay}: {hit:?}");
 }
 
@@ -88,7 +89,7 @@ fn only_proper_primitives_are_hit_and_every_field_is_finite() {
         let ray = Ray::new(origin, target - origin);
         let replay = format!("seed {seed}, ray {i}: {ray:?}");
         if let Some(hit) = accel.intersect(&ray, f32::INFINITY) {
-            assert_finite(&hit, &replay);
+            assert_finite(&accel, &hit, &replay);
             assert_eq!(hit.shape, 0, "{replay}: hit a sphere without a surface");
             assert!(
                 [0, 5, 6].contains(&hit.prim),
@@ -127,7 +128,7 @@ fn rays_along_and_through_degenerate_triangles_miss() {
             "{ray:?}: {hit:?}"
         );
         if let Some(hit) = hit {
-            assert_finite(&hit, &format!("{ray:?}"));
+            assert_finite(&accel, &hit, &format!("{ray:?}"));
         }
     }
     // Aimed at the proper triangle's interior, the duplicates are hit at the same t.
@@ -177,7 +178,7 @@ fn shading_normals_fall_back_and_follow_the_geometric_side() {
         (0, Vec3::Z, Vec3::Z),
         "zero normals fall back to ng"
     );
-    assert!(top.uv.abs_diff_eq(Vec2::new(0.2, 0.3), 1e-6));
+    assert!(accel.uv(&top).abs_diff_eq(Vec2::new(0.2, 0.3), 1e-6));
     let below = Ray::spawn(top.p, top.ng, Vec3::NEG_Z);
     let bottom = accel
         .intersect(&below, f32::INFINITY)

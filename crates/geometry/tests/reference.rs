@@ -73,7 +73,9 @@ fn random_scene(rng: &mut Pcg32) -> Vec<Shape> {
 }
 
 /// Checks the fields of `hit` that do not depend on which primitive won.
-fn check_hit_fields(shapes: &[Shape], ray: &Ray, hit: &Hit, replay: &str) {
+fn check_hit_fields(accel: &Accel, ray: &Ray, hit: &Hit, replay: &str) {
+    let shapes = accel.shapes();
+    let uv = accel.uv(hit);
     assert!(
         hit.p.abs_diff_eq(ray.at(hit.t), 1e-4),
         "{replay}: p {} vs ray at t {}",
@@ -107,13 +109,21 @@ fn check_hit_fields(shapes: &[Shape], ray: &Ray, hit: &Hit, replay: &str) {
             );
             match &mesh.uvs {
                 None => {
-                    let b = Vec3::new(1.0 - hit.uv.x - hit.uv.y, hit.uv.x, hit.uv.y);
+                    let b = hit.bary;
                     assert!(b.min_element() >= -1e-6, "{replay}: barycentrics {b}");
+                    assert!(
+                        (b.element_sum() - 1.0).abs() < 1e-5,
+                        "{replay}: barycentrics {b}"
+                    );
+                    assert_eq!(
+                        uv,
+                        Vec2::new(b.y, b.z),
+                        "{replay}: uv without texture coordinates"
+                    );
                     let p = b.x * p0 + b.y * p1 + b.z * p2;
                     assert!(
                         p.abs_diff_eq(hit.p, 1e-5),
-                        "{replay}: uv {} gives {p}, not {}",
-                        hit.uv,
+                        "{replay}: barycentrics {b} give {p}, not {}",
                         hit.p
                     );
                 }
@@ -121,8 +131,7 @@ fn check_hit_fields(shapes: &[Shape], ray: &Ray, hit: &Hit, replay: &str) {
                 // normals point away from its centre.
                 Some(_) => {
                     assert!(
-                        hit.uv
-                            .abs_diff_eq(Vec2::new(hit.p.x - 0.2, hit.p.y + 0.4) / 0.3, 1e-4),
+                        uv.abs_diff_eq(Vec2::new(hit.p.x - 0.2, hit.p.y + 0.4) / 0.3, 1e-4),
                         "{replay}"
                     );
                     let radial = (hit.p - Vec3::new(0.2, -0.4, 0.1)).normalize();
@@ -151,6 +160,11 @@ fn check_hit_fields(shapes: &[Shape], ray: &Ray, hit: &Hit, replay: &str) {
                 hit.ng
             );
             assert_eq!(hit.ns, hit.ng);
+            assert!(
+                uv.abs_diff_eq(Sphere::uv(outward), 1e-4),
+                "{replay}: uv {uv} vs {}",
+                Sphere::uv(outward)
+            );
         }
     }
 }
@@ -194,7 +208,7 @@ fn closest_hits_agree_with_double_precision_reference() {
                         "{replay}: hit {hit:?}, reference {shape}/{prim} at {t}"
                     );
                 }
-                check_hit_fields(&shapes, &ray, &hit, &replay);
+                check_hit_fields(&accel, &ray, &hit, &replay);
                 hits += 1;
             }
             (e, g) => panic!("{replay}: reference {e:?}, hierarchy {g:?}"),

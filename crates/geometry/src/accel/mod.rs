@@ -117,6 +117,24 @@ impl Accel {
         }
     }
 
+    /// Surface coordinates of `hit`, a hit this hierarchy returned: the mesh's interpolated
+    /// texture coordinates, or the barycentric coordinates `(b1, b2)` of `p1` and `p2` when it has
+    /// none; for a sphere `(phi / 2pi, theta / pi)` with `phi` measured from +x towards +y and
+    /// `theta` from +z. Computed on request, since shading without textures never asks (a
+    /// sphere's costs an `atan2` and an `acos`).
+    pub fn uv(&self, hit: &Hit) -> Vec2 {
+        match &self.shapes[hit.shape as usize] {
+            Shape::Mesh(mesh) => {
+                let b = hit.bary;
+                mesh.uvs.as_ref().map_or(Vec2::new(b.y, b.z), |uv| {
+                    let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
+                    uv[i0] * b.x + uv[i1] * b.y + uv[i2] * b.z
+                })
+            }
+            Shape::Sphere(sphere) => Sphere::uv(if sphere.flip_normals { -hit.ng } else { hit.ng }),
+        }
+    }
+
     /// Completes the hit of `ray` that traversal found.
     fn surface_hit(&self, ray: &Ray, found: Found) -> Hit {
         match found {
@@ -133,15 +151,12 @@ impl Accel {
                     .as_ref()
                     .and_then(|n| direction_of(n[i0] * b.x + n[i1] * b.y + n[i2] * b.z))
                     .map_or(info.ng, |ns| if ns.dot(info.ng) < 0.0 { -ns } else { ns });
-                let uv = mesh.uvs.as_ref().map_or(Vec2::new(b.y, b.z), |uv| {
-                    uv[i0] * b.x + uv[i1] * b.y + uv[i2] * b.z
-                });
                 Hit {
                     t: hit.t,
                     p,
                     ng: info.ng,
                     ns,
-                    uv,
+                    bary: b,
                     shape: info.shape,
                     prim: info.prim,
                 }
@@ -166,7 +181,7 @@ impl Accel {
                     p,
                     ng,
                     ns: ng,
-                    uv: Sphere::uv(outward),
+                    bary: Vec3::ZERO,
                     shape: info.shape,
                     prim: 0,
                 }
