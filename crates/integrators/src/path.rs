@@ -264,6 +264,7 @@ impl PathIntegrator {
     }
 
     /// The next direction of the walk: by the BSDF's sampling routine or uniformly.
+    #[inline]
     fn next_direction(
         &self,
         surface: &SurfaceHit<'_>,
