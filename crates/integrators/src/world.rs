@@ -124,7 +124,7 @@ impl World {
     }
 
     /// The closest surface along `ray`, told to `tally` as one closest-hit ray.
-    #[inline]
+    #[inline(always)]
     pub fn intersect(&self, ray: &Ray, tally: &mut impl RayTally) -> Option<SurfaceHit<'_>> {
         tally.closest_ray(ray);
         let hit = self.accel.intersect(ray, f32::INFINITY)?;
