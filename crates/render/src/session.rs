@@ -148,10 +148,10 @@ fn render_image<T: RayTally + Default + Send>(
 
 /// Path vertices whose sampler dimensions come from the sampler's pattern (with the camera's);
 /// deeper vertices draw independent numbers ([`PrefixSampler`]). On the Cornell box (128 spp,
-/// Sobol, four seeds) the relMSE × spp was 0.1408 with every dimension from the pattern, 0.1400
-/// with two vertices and 0.1436 with one, while the deeper dimensions cost 3% of the render's
+/// Sobol, four seeds) the relMSE × spp was 0.1408 with every dimension from the pattern, 0.1403
+/// with two vertices and 0.1436 with one, while the deeper dimensions cost 2.5% of the render's
 /// instructions.
-pub const PATTERN_VERTICES: u32 = 2;
+const PATTERN_VERTICES: u32 = 2;
 
 /// [`render_image`] without a pilot, as `context` says. The per-sample code is compiled once per
 /// sampler type, so that sampling is inlined into the integrator rather than dispatched per call.

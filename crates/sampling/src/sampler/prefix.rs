@@ -48,11 +48,6 @@ impl<S: Sampler> PrefixSampler<S> {
         }
     }
 
-    /// The number of leading dimensions that come from the inner sampler.
-    pub fn dimensions(&self) -> u32 {
-        self.dimensions
-    }
-
     /// Whether the next dimension comes from the inner sampler; counts it.
     #[inline]
     fn next_from_inner(&mut self) -> bool {
