@@ -212,6 +212,7 @@ impl PathIntegrator {
     }
 
     /// Direct light at `surface` by one shadow ray, MIS-weighted if MIS is on.
+    #[inline(always)]
     fn direct_light(
         &self,
         world: &World,
