@@ -2,7 +2,7 @@
 //!
 //! Every light answers three questions for a shading point: sample a direction towards it
 //! ([`Light::sample_li`]), give the density of a direction found some other way
-//! ([`Light::pdf_li`], per steradian), and say how much power it emits ([`Light::power`], used
+//! ([`Light::pdf_li_surface`] and [`Light::pdf_li_environment`], per steradian), and say how much power it emits ([`Light::power`], used
 //! to pick lights). Emission seen by a ray that hits an emitter is [`Light::radiance_towards`] for
 //! surface lights and [`Light::radiance_from_direction`] for the environment.
 //!

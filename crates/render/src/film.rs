@@ -72,7 +72,7 @@ impl PixelSum {
 /// end.
 const EXACT_FRACTION_BITS: i32 = 48;
 
-/// A per-channel sum kept exactly, in fixed point with [`EXACT_FRACTION_BITS`] fractional bits,
+/// A per-channel sum kept exactly, in fixed point with 48 fractional bits (`EXACT_FRACTION_BITS`),
 /// so that it does not depend on the order of its terms: light paths' splats reach a pixel in an
 /// order that depends on how the samples were split into passes, and a resumed render (whose
 /// passes split differently) must give the same bits as an uninterrupted one. Each term is

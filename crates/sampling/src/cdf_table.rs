@@ -41,8 +41,8 @@ impl CdfTable {
         Ok(Self { cdf, pmf })
     }
 
-    /// For `u` in [0, 1): the index i with cdf[i] ≤ u < cdf[i + 1], its probability, and
-    /// (u − cdf[i]) / pmf(i) in [0, 1). Zero-weight indices are never returned.
+    /// For `u` in [0, 1): the index i with `cdf[i] ≤ u < cdf[i + 1]`, its probability, and
+    /// `(u − cdf[i]) / pmf(i)` in [0, 1). Zero-weight indices are never returned.
     #[inline]
     pub fn sample(&self, u: f32) -> (usize, f32, f32) {
         let n = self.pmf.len();

@@ -27,7 +27,7 @@ pub struct RenderScene {
     pub desc: SceneDesc,
 }
 
-/// Builds the runtime scene from `desc`, in camera-relative world space (see [`crate::rebase`]:
+/// Builds the runtime scene from `desc`, in camera-relative world space (see the `rebase` module:
 /// the returned `desc` has every position translated by minus the camera's). Errors name the
 /// scene file and the shape or BSDF that cannot be built.
 pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
