@@ -159,31 +159,31 @@ fn render_sampled<T: RayTally + Default + Send>(
     context: &Context<'_, T>,
 ) -> Result<RenderOutput, BudgetError> {
     let (seed, spp) = (context.plan.seed, context.plan.sampler_spp);
-    let transport = Built::new(context.scene, context.plan);
-    let prefix = transport.pattern_dimensions(context.scene.camera.has_lens());
+    let built = Integrators::new(context.scene, context.plan);
+    let prefix = built.pattern_dimensions(context.scene.camera.has_lens());
     match context.plan.sampler {
         SamplerKind::Independent => {
-            render_with(context, &transport, || IndependentSampler::new(seed, spp))
+            render_with(context, &built, || IndependentSampler::new(seed, spp))
         }
-        SamplerKind::Stratified => render_with(context, &transport, || {
+        SamplerKind::Stratified => render_with(context, &built, || {
             PrefixSampler::new(StratifiedSampler::new(seed, spp), prefix, seed)
         }),
-        SamplerKind::BlueNoise => render_with(context, &transport, || {
+        SamplerKind::BlueNoise => render_with(context, &built, || {
             PrefixSampler::new(BlueNoiseSampler::new(seed, spp), prefix, seed)
         }),
-        SamplerKind::Sobol => render_with(context, &transport, || {
+        SamplerKind::Sobol => render_with(context, &built, || {
             PrefixSampler::new(SobolSampler::new(seed, spp), prefix, seed)
         }),
     }
 }
 
 /// The integrator a render runs and, with caustics by light tracing, its light tracer.
-struct Built {
+struct Integrators {
     integrator: Integrator,
     light_tracer: Option<LightTracer>,
 }
 
-impl Built {
+impl Integrators {
     fn new(scene: &RenderScene, plan: &RenderPlan) -> Self {
         let world = &scene.world;
         match plan.transport {
@@ -254,10 +254,10 @@ impl<'a, T> Context<'a, T> {
     }
 }
 
-/// [`render_sampled`] with `transport` and the samplers `new_sampler` makes.
+/// [`render_sampled`] with the integrators `built` and the samplers `new_sampler` makes.
 fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     context: &Context<'_, T>,
-    transport: &Built,
+    built: &Integrators,
     new_sampler: impl Fn() -> S + Sync + Send,
 ) -> Result<RenderOutput, BudgetError> {
     let Context {
@@ -271,10 +271,10 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     let world = &scene.world;
     let camera: &Camera = &scene.camera;
     let (width, height) = (scene.desc.film.width, scene.desc.film.height);
-    let Built {
+    let Integrators {
         integrator,
         light_tracer,
-    } = transport;
+    } = built;
     let trace_light_path = |worker: &mut Worker<'_, S, T>,
                             pixel: UVec2,
                             sample_index: u32,
