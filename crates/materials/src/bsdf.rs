@@ -128,7 +128,7 @@ impl Bsdf {
         match self {
             Self::Conductor(_) | Self::Dielectric(_) => true,
             Self::Diffuse(_) | Self::RoughConductor(_) => false,
-            Self::TwoSided(b) => b.front().is_delta() && b.back().is_delta(),
+            Self::TwoSided(b) => b.is_delta(),
         }
     }
 

@@ -13,6 +13,9 @@ use glam::{Vec2, Vec3};
 pub struct TwoSided {
     front: Box<Bsdf>,
     back: Box<Bsdf>,
+    /// Both sides are delta BSDFs: kept so that [`Bsdf::is_delta`], asked at every path vertex,
+    /// is not recursive and can be inlined.
+    is_delta: bool,
 }
 
 impl TwoSided {
@@ -28,6 +31,7 @@ impl TwoSided {
             return Err(MaterialError::TransmissiveTwoSided);
         }
         Ok(Self {
+            is_delta: front.is_delta() && back.is_delta(),
             front: Box::new(front),
             back: Box::new(back),
         })
@@ -41,6 +45,12 @@ impl TwoSided {
     /// The BSDF on the other side, seen through mirrored directions (z ≥ 0).
     pub fn back(&self) -> &Bsdf {
         &self.back
+    }
+
+    /// Whether both sides are delta BSDFs (every direction they scatter to is a delta lobe's).
+    #[inline]
+    pub fn is_delta(&self) -> bool {
+        self.is_delta
     }
 
     /// The BSDF that `wo` (local frame) sees, and whether directions must be mirrored for it.
