@@ -1,6 +1,6 @@
 //! Rays, bounding boxes, triangle meshes, spheres and the scene's bounding volume hierarchy.
 //!
-//! All geometry is in world space and in `f32`. [`Accel`] builds one 4-wide BVH (obvhs' PLOC
+//! All geometry is in world space and in `f32`. [`Accel`] builds one 8-wide BVH (obvhs' PLOC
 //! binary BVH, collapsed) over every triangle and sphere of a scene and answers closest-hit
 //! ([`Accel::intersect`]) and any-hit ([`Accel::occluded`]) queries without allocating.
 //!

@@ -8,7 +8,7 @@ use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::ploc::PlocBuilder;
 
 use super::collapse::collapse;
-use super::node::{ChildRef, Node4};
+use super::node::{ChildRef, Node};
 use super::prim::{Geometry, PrimInfo, direction_of};
 use crate::sphere::SphereGeom;
 use crate::triangle::TriangleCoords;
@@ -20,7 +20,7 @@ const MAX_LEAF: u32 = 4;
 
 /// The built hierarchy and its primitives.
 pub(crate) struct Built {
-    pub nodes: Vec<Node4>,
+    pub nodes: Vec<Node>,
     pub stack_need: usize,
     pub geometry: Geometry,
     /// Ids of the triangles of packet `p` at `4 p .. 4 p + 4` ([`PrimInfo::UNUSED`] for unused

@@ -1,25 +1,25 @@
-//! Collapsing obvhs' binary BVH into the 4-wide hierarchy the traversal walks.
+//! Collapsing obvhs' binary BVH into the 8-wide hierarchy the traversal walks.
 //!
 //! Top-down and greedy: a node's children start as the two children of a binary node, and the
 //! child with the largest surface area that is still an inner node is replaced by its two
-//! children until there are four (the rule of Wald et al. 2008, "Getting rid of packets", which
-//! Embree's BVH4 builders follow). A binary subtree becomes a leaf when it is a binary leaf, or
+//! children until there are [`WIDTH`] (the rule of Wald et al. 2008, "Getting rid of packets",
+//! which Embree's wide BVH builders follow). A binary subtree becomes a leaf when it is a binary leaf, or
 //! when it holds at most `max_leaf` primitives that may share a leaf.
 
 use obvhs::aabb::Aabb as BvhAabb;
 use obvhs::bvh2::Bvh2;
 
-use super::node::{ChildRef, Node4};
+use super::node::{ChildRef, Node, WIDTH};
 
-/// The 4-wide hierarchy: its nodes, the root at index 0.
+/// The 8-wide hierarchy: its nodes, the root at index 0.
 pub(crate) struct Tree {
-    pub nodes: Vec<Node4>,
+    pub nodes: Vec<Node>,
     /// The most traversal stack entries a query can need: over the paths from the root, the most
     /// non-empty siblings left behind (`children - 1` summed over the path's inner nodes).
     pub stack_need: usize,
 }
 
-/// Collapses `bvh2`, whose leaves hold one primitive each (PLOC's do), into a 4-wide tree.
+/// Collapses `bvh2`, whose leaves hold one primitive each (PLOC's do), into an 8-wide tree.
 ///
 /// Primitives for which `groupable` is true share leaves, up to `max_leaf` of them; the others
 /// have a leaf each. `leaf` receives the primitives (input indices, in the binary subtree's
@@ -51,8 +51,8 @@ pub(crate) fn collapse(
         leaf(&prims)
     };
 
-    tree.nodes.push(Node4::EMPTY);
-    // (binary node, 4-wide node it fills).
+    tree.nodes.push(Node::EMPTY);
+    // (binary node, wide node it fills).
     let mut pending = Vec::new();
     if is_leaf(0) {
         let b = bvh2.nodes[0].aabb();
@@ -62,12 +62,12 @@ pub(crate) fn collapse(
     }
     while let Some((binary, index)) = pending.pop() {
         let children = open(bvh2, binary, &is_leaf);
-        let mut node = Node4::EMPTY;
+        let mut node = Node::EMPTY;
         for (lane, &child) in children.as_slice().iter().enumerate() {
             let content = if is_leaf(child) {
                 leaf_of(child)
             } else {
-                tree.nodes.push(Node4::EMPTY);
+                tree.nodes.push(Node::EMPTY);
                 pending.push((child, tree.nodes.len() - 1));
                 ChildRef::node(tree.nodes.len() - 1)
             };
@@ -80,13 +80,14 @@ pub(crate) fn collapse(
     tree
 }
 
-/// The (two to four) binary nodes that become the children of the 4-wide node for the inner
-/// binary node `binary`.
+/// The (two to [`WIDTH`]) binary nodes that become the children of the wide node for the
+/// inner binary node `binary`.
 fn open(bvh2: &Bvh2, binary: usize, is_leaf: &impl Fn(usize) -> bool) -> Opened {
     let first = bvh2.nodes[binary].first_index as usize;
-    let mut children = [first, first + 1, 0, 0];
+    let mut children = [0; WIDTH];
+    children[..2].copy_from_slice(&[first, first + 1]);
     let mut len = 2;
-    while len < 4 {
+    while len < WIDTH {
         let largest = (0..len)
             .filter(|&slot| !is_leaf(children[slot]))
             .max_by(|&a, &b| area(bvh2, children[a]).total_cmp(&area(bvh2, children[b])));
@@ -101,9 +102,9 @@ fn open(bvh2: &Bvh2, binary: usize, is_leaf: &impl Fn(usize) -> bool) -> Opened 
     Opened { children, len }
 }
 
-/// Up to four binary node indices.
+/// Up to [`WIDTH`] binary node indices.
 struct Opened {
-    children: [usize; 4],
+    children: [usize; WIDTH],
     len: usize,
 }
 
@@ -171,7 +172,7 @@ fn leaf_choices(bvh2: &Bvh2, weight: impl Fn(u32) -> u32, max_leaf: u32) -> Vec<
 }
 
 /// [`Tree::stack_need`] of `nodes`, whose children all have larger indices than their parents.
-fn stack_need(nodes: &[Node4]) -> usize {
+fn stack_need(nodes: &[Node]) -> usize {
     let mut need = vec![0usize; nodes.len()];
     for index in (0..nodes.len()).rev() {
         let children = &nodes[index].children;
@@ -264,7 +265,7 @@ mod tests {
             assert!(!seen_nodes[index], "node {index} reached twice");
             seen_nodes[index] = true;
             let node = &tree.nodes[index];
-            let used: Vec<usize> = (0..4)
+            let used: Vec<usize> = (0..WIDTH)
                 .filter(|&lane| node.children[lane] != ChildRef::EMPTY)
                 .collect();
             assert!(!used.is_empty(), "node {index} is empty");
@@ -276,8 +277,8 @@ mod tests {
             for lane in used {
                 let contains = |b: &BvhAabb| {
                     (0..3).all(|axis| {
-                        node.planes[2 * axis][lane] <= b.min[axis]
-                            && node.planes[2 * axis + 1][lane] >= b.max[axis]
+                        node.plane(2 * axis, lane) <= b.min[axis]
+                            && node.plane(2 * axis + 1, lane) >= b.max[axis]
                     })
                 };
                 match node.children[lane].get() {
@@ -331,7 +332,7 @@ mod tests {
     }
 
     #[test]
-    fn nodes_have_four_children_unless_all_are_leaves() {
+    fn nodes_are_full_unless_all_children_are_leaves() {
         let boxes = boxes(5000, 7);
         let (tree, _) = collapsed(&binary(&boxes), 4, |_| true);
         for (index, node) in tree.nodes.iter().enumerate() {
@@ -341,7 +342,7 @@ mod tests {
                 .filter(|&c| c != ChildRef::EMPTY)
                 .collect();
             assert!(
-                used.len() == 4 || used.iter().all(|c| c.inner().is_none()),
+                used.len() == WIDTH || used.iter().all(|c| c.inner().is_none()),
                 "node {index} has {} children, not all leaves",
                 used.len()
             );

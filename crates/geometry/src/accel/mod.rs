@@ -11,13 +11,13 @@ mod walk;
 use glam::{Vec2, Vec3};
 
 use crate::{Aabb, Hit, Ray, Shape, Sphere};
-use node::Node4;
+use node::Node;
 use prim::{Found, Geometry, PrimInfo, direction_of};
 use query::RayQuery;
 use stack::{ArrayStack, FIXED_STACK, SMALL_STACK, StackKind};
 
-/// A 4-wide BVH over every triangle and sphere of a scene, owning the shapes: obvhs' binary BVH
-/// (built by PLOC) collapsed to nodes that test four uncompressed child boxes at once. Queries
+/// An 8-wide BVH over every triangle and sphere of a scene, owning the shapes: obvhs' binary BVH
+/// (built by PLOC) collapsed to nodes that test eight uncompressed child boxes at once. Queries
 /// do not allocate (except on pathologically deep trees, see below) and may run from many
 /// threads at once.
 ///
@@ -26,7 +26,7 @@ use stack::{ArrayStack, FIXED_STACK, SMALL_STACK, StackKind};
 pub struct Accel {
     shapes: Vec<Shape>,
     /// The hierarchy, root first (empty when there are no primitives).
-    nodes: Vec<Node4>,
+    nodes: Vec<Node>,
     /// Triangle packets and spheres, which leaves refer to.
     geometry: Geometry,
     /// Ids and normals of the triangles: lane `l` of packet `p` at `4 p + l`.

@@ -30,7 +30,7 @@ pub(crate) struct RayQuery {
 ///
 /// A zero direction component has an infinite reciprocal, so the slab is all or nothing: from
 /// `-inf` to `+inf` when the origin lies strictly between its planes, else empty. The box planes
-/// are one float step outside the boxes they bound (see [`super::node::Node4::set`]), so an
+/// are one float step outside the boxes they bound (see [`super::node::Node::set`]), so an
 /// origin on a plane, where `0 * inf` would be NaN, lies outside the box itself.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BoxRay {

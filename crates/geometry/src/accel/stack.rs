@@ -3,7 +3,7 @@
 
 /// Capacity of the stack for shallow trees (small scenes), where clearing a larger stack for
 /// every ray is a measurable part of a ray's cost.
-pub(crate) const SMALL_STACK: usize = 16;
+pub(crate) const SMALL_STACK: usize = 32;
 
 /// Capacity of the fixed stack for ordinary trees.
 pub(crate) const FIXED_STACK: usize = 64;

@@ -1,9 +1,7 @@
-//! Traversal of the 4-wide hierarchy: closest hit (nearest child first, skipping what lies beyond
+//! Traversal of the 8-wide hierarchy: closest hit (nearest child first, skipping what lies beyond
 //! the closest hit so far) and any hit (stopping at the first), each over a stack of our choosing.
 
-use glam::Vec4;
-
-use super::node::{Child, ChildRef, Node4};
+use super::node::{Child, ChildRef, Node, WIDTH};
 use super::prim::{Found, Geometry};
 use super::query::RayQuery;
 use super::stack::Stack;
@@ -27,7 +25,7 @@ impl Default for Pending {
 /// The closest primitive hit with `0 < t < t_max`.
 #[inline(always)]
 pub(crate) fn closest(
-    nodes: &[Node4],
+    nodes: &[Node],
     geometry: &Geometry,
     stack: &mut impl Stack<Pending>,
     query: &RayQuery,
@@ -75,24 +73,22 @@ pub(crate) fn closest(
 /// are pushed, the farthest first.
 #[inline(always)]
 fn nearest_first(
-    node: &Node4,
+    node: &Node,
     mask: u32,
-    t_enter: Vec4,
+    t_enter: [f32; WIDTH],
     stack: &mut impl Stack<Pending>,
 ) -> ChildRef {
-    // Through an array: indexing a vector by a variable lane compiles to a jump table.
-    let t_enter = t_enter.to_array();
     let entry = |lane: u32| Pending {
         child: node.children[lane as usize],
         t_enter: t_enter[lane as usize],
     };
     let a = entry(mask.trailing_zeros());
-    let rest = mask & (mask - 1);
+    let mut rest = mask & (mask - 1);
     if rest == 0 {
         return a.child;
     }
     let b = entry(rest.trailing_zeros());
-    let rest = rest & (rest - 1);
+    rest &= rest - 1;
     if rest == 0 {
         let (near, far) = if b.t_enter < a.t_enter {
             (b, a)
@@ -102,21 +98,20 @@ fn nearest_first(
         stack.push(far);
         return near.child;
     }
-    // Three or four: sorted farthest first by insertion.
-    let mut sorted = [a, b, entry(rest.trailing_zeros()), Pending::default()];
-    let rest = rest & (rest - 1);
-    let len = if rest == 0 {
-        3
-    } else {
-        sorted[3] = entry(rest.trailing_zeros());
-        4
-    };
-    for i in 1..len {
-        let mut j = i;
-        while j > 0 && sorted[j - 1].t_enter < sorted[j].t_enter {
-            sorted.swap(j - 1, j);
+    // Three or more: sorted farthest first by insertion.
+    let mut sorted = [Pending::default(); WIDTH];
+    sorted[..2].copy_from_slice(&[a, b]);
+    let mut len = 2;
+    while rest != 0 {
+        let next = entry(rest.trailing_zeros());
+        rest &= rest - 1;
+        let mut j = len;
+        while j > 0 && sorted[j - 1].t_enter < next.t_enter {
+            sorted[j] = sorted[j - 1];
             j -= 1;
         }
+        sorted[j] = next;
+        len += 1;
     }
     for &pending in &sorted[..len - 1] {
         stack.push(pending);
@@ -127,7 +122,7 @@ fn nearest_first(
 /// Whether any primitive is hit with `0 < t < t_max`.
 #[inline(always)]
 pub(crate) fn any(
-    nodes: &[Node4],
+    nodes: &[Node],
     geometry: &Geometry,
     stack: &mut impl Stack<ChildRef>,
     query: &RayQuery,
