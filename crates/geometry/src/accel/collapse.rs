@@ -3,8 +3,8 @@
 //! Top-down and greedy: a node's children start as the two children of a binary node, and the
 //! child with the largest surface area that is still an inner node is replaced by its two
 //! children until there are [`WIDTH`] (the rule of Wald et al. 2008, "Getting rid of packets",
-//! which Embree's wide BVH builders follow). A binary subtree becomes a leaf when it is a binary leaf, or
-//! when it holds at most `max_leaf` primitives that may share a leaf.
+//! which Embree's wide BVH builders follow). A binary subtree becomes a leaf when it is a binary
+//! leaf, or when it holds at most `max_leaf` primitives that may share a leaf.
 
 use obvhs::aabb::Aabb as BvhAabb;
 use obvhs::bvh2::Bvh2;

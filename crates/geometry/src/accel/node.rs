@@ -98,9 +98,10 @@ impl Default for ChildRef {
     }
 }
 
-/// Children per node. Eight rather than four halves the levels a ray descends through a large
-/// tree (the 1.3M-triangle icosphere: closest hit 5–8% and occlusion 13–22% faster, the Cornell
-/// box's rays 9–13%; Veach's scene, whose nine leaves all fit the root, 6–7% slower).
+/// Children per node. Eight rather than four halves the levels a ray descends (measured against
+/// four: the Cornell box's closest-hit and shadow rays 14–15% faster, the 1.3M-triangle icosphere's
+/// 3% and 15–26%; 5–18% slower where every leaf fits the root, as in Veach's scene and the
+/// furnace; README, "The wide BVH").
 pub(crate) const WIDTH: usize = 8;
 
 /// Four-lane vectors per plane of a node.
