@@ -61,11 +61,11 @@ static GLOBAL: Counting = Counting;
 const SIZE: u32 = 16;
 /// Samples per pixel of the smaller and the larger render.
 const SPP: [u32; 2] = [64, 127];
-/// Extra pixel samples per extra allocation allowed in the larger render: 64 times fewer
-/// allocations than one per sample, 2.5 times more than the most that buffer growth and the
-/// adaptive image's extra pass were seen to add (light tracing on the glass box: 100 more, one
-/// per 160 extra samples).
-const SAMPLES_PER_EXTRA_ALLOCATION: u64 = 64;
+/// Extra pixel samples per extra allocation allowed in the larger render: 32 times fewer
+/// allocations than one per sample, and 3.2 times more than the most that buffer growth and the
+/// adaptive image's extra pass were seen to add (2026-12-01, 2 threads: −1 to 1 more in 76 of the
+/// 100 renders, 49–51 in 19 with adaptive sampling's extra pass, 78–158 with light tracing).
+const SAMPLES_PER_EXTRA_ALLOCATION: u64 = 32;
 
 /// Allocations made by rendering `scene` with `flags` at `spp` on the global thread pool.
 fn allocations(scene: &scene::RenderScene, flags: &[&str], spp: u32) -> u64 {
