@@ -14,7 +14,7 @@
 
 mod common;
 
-use common::{load_file, scenes_dir};
+use common::{load_file, suite_scenes};
 use render::driver::RenderOptions;
 use render::session::{film_filter, render_scene};
 use render::technique::plan_from_flags;
@@ -83,12 +83,7 @@ fn allocations(scene: &scene::RenderScene, flags: &[&str], spp: u32) -> u64 {
 
 #[test]
 fn renders_allocate_per_pass_not_per_sample() {
-    let mut names: Vec<_> = std::fs::read_dir(scenes_dir())
-        .expect("the scene suite")
-        .map(|entry| entry.expect("a directory entry").path())
-        .filter(|path| path.extension().is_some_and(|e| e == "xml"))
-        .collect();
-    names.sort();
+    let names = suite_scenes();
     assert!(names.len() >= 8, "only {} suite scenes", names.len());
     // Every preset with independent samples, every other sampler with `auto`, and adaptive
     // sampling (its pilot, allocation and unequal pixel counts) with two of them.

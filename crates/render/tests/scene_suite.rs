@@ -1,10 +1,13 @@
 //! The scene suite rendered end to end through the `strata` binary: exact furnace answers,
 //! thread-count independence, finite images, and load errors that name file and line.
 
+mod common;
+
+use common::{scenes_dir, suite_scenes};
 use render::image::Image;
 use render::metrics::mean;
 use render::stats::RenderStats;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 fn strata(args: &[&str]) -> Output {
@@ -12,10 +15,6 @@ fn strata(args: &[&str]) -> Output {
         .args(args)
         .output()
         .expect("the strata binary runs")
-}
-
-fn scenes_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
 }
 
 fn arg(path: &Path) -> &str {
@@ -114,12 +113,7 @@ fn images_do_not_depend_on_the_thread_count() {
 #[test]
 fn every_scene_renders_finite_images_with_every_preset() {
     let dir = tempfile::tempdir().unwrap();
-    let mut scenes: Vec<PathBuf> = std::fs::read_dir(scenes_dir())
-        .expect("scenes/ exists")
-        .map(|e| e.expect("readable entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
-        .collect();
-    scenes.sort();
+    let scenes = suite_scenes();
     assert!(scenes.len() >= 6, "the suite has {} scenes", scenes.len());
     for scene in &scenes {
         for integrator in ["reference", "nee", "mis", "ris", "auto"] {

@@ -20,6 +20,17 @@ pub fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
 }
 
+/// The suite's scene files (`scenes/*.xml`), sorted by name.
+pub fn suite_scenes() -> Vec<PathBuf> {
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(scenes_dir())
+        .expect("scenes/ exists")
+        .map(|e| e.expect("readable entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .collect();
+    scenes.sort();
+    scenes
+}
+
 /// Loads `path` with `overrides` of its `<default>` values and the film set to `width × height`.
 pub fn load_file(path: &Path, overrides: &[(&str, &str)], width: u32, height: u32) -> RenderScene {
     let overrides: Vec<(String, String)> = overrides
