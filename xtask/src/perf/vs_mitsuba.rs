@@ -219,10 +219,22 @@ fn summarise(
     for (i, (reference, _)) in references.iter().enumerate() {
         let mitsuba = med(&|r| r.errors[i].0);
         let strata = med(&|r| r.errors[i].1);
-        let scaled = med(&|r| r.errors[i].1 * r.strata_seconds / r.mitsuba_seconds);
+        let scaled_of = |r: &Round| r.errors[i].1 * r.strata_seconds / r.mitsuba_seconds;
+        let scaled = med(&scaled_of);
+        // The spread of the rounds' own ratios shows how far the machine's load moved them.
+        let ratios: Vec<f64> = rounds
+            .iter()
+            .map(|r| scaled_of(r) / r.errors[i].0)
+            .collect();
+        let (least, most) = ratios
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+                (lo.min(x), hi.max(x))
+            });
         println!(
             "  against {reference}: relMSE Mitsuba {mitsuba:.3e}, Strata {strata:.3e} \
-             (scaled to equal time {scaled:.3e}); Strata / Mitsuba = {:.2}",
+             (scaled to equal time {scaled:.3e}); Strata / Mitsuba = {:.2} \
+             (rounds {least:.2}–{most:.2})",
             scaled / mitsuba
         );
         if i == 0 {
