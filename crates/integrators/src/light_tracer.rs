@@ -67,8 +67,12 @@ pub struct LightTracer {
 impl LightTracer {
     /// The tracer for `world` with the path tracer's `settings` (depth and roulette), for a
     /// camera with an aperture (`camera_has_lens`) or a pinhole; `None` when the world has no
-    /// area light with power.
+    /// area light with power, or when `settings` hide emitters: the camera then sees through area
+    /// emitters, which its connections from light paths do not (the path tracer keeps those paths).
     pub fn new(world: &World, settings: &PathSettings, camera_has_lens: bool) -> Option<Self> {
+        if settings.hide_emitters {
+            return None;
+        }
         let lights: Vec<u32> = (0..world.lights().len() as u32)
             .filter(|&i| {
                 matches!(

@@ -127,7 +127,12 @@ impl PathIntegrator {
         let mut first_vertex_non_delta = false;
         for depth in 1..=max_depth {
             let hidden = depth == 1 && settings.hide_emitters;
-            let Some(surface) = world.intersect(&ray, counters) else {
+            let found = if hidden {
+                world.intersect_past_emitters(&ray, counters)
+            } else {
+                world.intersect(&ray, counters)
+            };
+            let Some(surface) = found else {
                 let background = world.background();
                 if !hidden && background != Vec3::ZERO {
                     let weight = self.emission_weight(&previous, world.environment(), || {

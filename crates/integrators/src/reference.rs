@@ -23,7 +23,8 @@ pub struct ReferenceSettings {
     /// Largest number of path vertices after the camera (Mitsuba's `max_depth`: 1 shows only
     /// emitters seen directly, 2 adds direct lighting); `None` is unbounded.
     pub max_depth: Option<u32>,
-    /// Hide emitters (and the environment) seen directly by the camera.
+    /// Hide emitters seen directly by the camera, as Mitsuba 3 does: camera rays pass through
+    /// area emitters to the first surface that does not emit, and find no environment.
     pub hide_emitters: bool,
 }
 
@@ -44,7 +45,12 @@ pub fn radiance(
     let mut ray = camera_ray;
     for depth in 1..=max_depth {
         let hidden = depth == 1 && settings.hide_emitters;
-        let Some(surface) = world.intersect(&ray, counters) else {
+        let found = if hidden {
+            world.intersect_past_emitters(&ray, counters)
+        } else {
+            world.intersect(&ray, counters)
+        };
+        let Some(surface) = found else {
             if !hidden {
                 radiance += throughput * world.background();
             }

@@ -50,7 +50,8 @@ pub struct PathSettings {
     /// Largest number of path vertices after the camera (Mitsuba's `max_depth`); `None` is
     /// unbounded (then roulette should be on, or paths run to the safety cap).
     pub max_depth: Option<u32>,
-    /// Hide emitters (and the environment) seen directly by the camera.
+    /// Hide emitters seen directly by the camera, as Mitsuba 3 does: camera rays pass through
+    /// area emitters to the first surface that does not emit, and find no environment.
     pub hide_emitters: bool,
     /// Next event estimation: a shadow ray to a chosen light at every non-delta vertex.
     pub sample_lights: bool,

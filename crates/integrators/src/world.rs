@@ -145,6 +145,26 @@ impl World {
         })
     }
 
+    /// The first surface along the camera ray `ray` that does not emit, passing through every
+    /// area emitter in front of it (each one told to `tally` as one more closest-hit ray): how
+    /// Mitsuba 3's `hide_emitters` hides emitters from the camera, so that what lies behind a
+    /// hidden light shows (Mitsuba 3's `skip_area_emitters`).
+    #[inline]
+    pub fn intersect_past_emitters(
+        &self,
+        ray: &Ray,
+        tally: &mut impl RayTally,
+    ) -> Option<SurfaceHit<'_>> {
+        let mut ray = *ray;
+        loop {
+            let surface = self.intersect(&ray, tally)?;
+            if surface.light.is_none() {
+                return Some(surface);
+            }
+            ray = Ray::spawn(surface.hit.p, surface.hit.ng, ray.dir);
+        }
+    }
+
     /// True when nothing blocks the segment from the surface point `p` (geometric normal `ng`)
     /// to `p_light` (normal `n_light`, zero for points), told to `tally` as one shadow ray.
     #[inline]

@@ -125,7 +125,7 @@ pub struct RenderArgs {
     /// glass (light → specular → surface → camera) is traced from the lights and connected to
     /// the camera instead of being found by chance, splatting into the pixels the filter
     /// reaches (through a sampled aperture point with a thin lens). Needs a delta BSDF and an
-    /// area light; ignored otherwise.
+    /// area light, and emitters not hidden (`hide_emitters`); ignored otherwise.
     /// `auto` turns it on where it applies; with another preset, this flag does.
     #[arg(long)]
     pub light_tracing: bool,

@@ -127,8 +127,9 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
     if let Transport::Path(settings) = &mut transport {
         // `auto` traces caustics from the lights wherever that applies.
         let auto_traces = args.integrator == IntegratorPreset::Auto;
-        settings.light_tracing =
-            (args.light_tracing || auto_traces) && light_tracing_applies(features);
+        settings.light_tracing = (args.light_tracing || auto_traces)
+            && light_tracing_applies(features)
+            && !settings.hide_emitters;
     }
 
     let sampler = match args.sampler {
