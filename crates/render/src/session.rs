@@ -315,7 +315,8 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         |worker: &mut Worker<'_, S, T>, pixel: UVec2, sample_index: u32| -> Vec3 {
             let sampler = &mut worker.sampler;
             sampler.start_pixel_sample(pixel, sample_index);
-            let film_position = filter.sample_film_position(pixel, sampler.next_2d());
+            let film_position =
+                filter.sample_film_position(pixel, sampler.next_2d(), width, height);
             let u_lens = if has_lens {
                 sampler.next_2d()
             } else {

@@ -79,6 +79,24 @@ impl GaussianFilter {
         (f0 + (f1 - f0) * s) / self.total
     }
 
+    /// The CDF of [`Self::pdf_1d`] at offset `x`: exactly 0 at and below `-radius`, exactly 1 at
+    /// and above `radius`.
+    pub fn cdf_1d(&self, x: f32) -> f32 {
+        let h = 2.0 * self.radius / SEGMENTS as f32;
+        let position = (x + self.radius) / h;
+        if position.is_nan() || position <= 0.0 {
+            return 0.0;
+        }
+        if position >= SEGMENTS as f32 {
+            return 1.0;
+        }
+        let i = (position as usize).min(SEGMENTS - 1);
+        let s = position - i as f32;
+        let (f0, f1) = (self.values[i], self.values[i + 1]);
+        let within = h * s * (f0 + 0.5 * (f1 - f0) * s) / self.total;
+        (self.cdf[i] + within).min(1.0)
+    }
+
     /// Maps `u ∈ [0, 1)` to an offset in `[-radius, radius]` (pixels) with density proportional
     /// to the piecewise-linear interpolant of `f₁`. Monotonic in `u`.
     pub fn sample_1d(&self, u: f32) -> f32 {

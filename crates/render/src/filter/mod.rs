@@ -8,6 +8,11 @@
 //! average (`∫ f(x) L(x) dx / ∫ f(x) dx`). Pixels are then independent of each other, which keeps
 //! images bit-identical whatever the number of threads.
 //!
+//! Mitsuba's films (without `sample_border`) take samples only inside the image, so both
+//! integrals run over the image alone: a pixel within the filter's radius of an edge averages
+//! what its filter sees inside the image. Strata's offsets are drawn from the filter restricted
+//! to the image likewise (per axis, since the filter is separable and the image a rectangle).
+//!
 //! All offsets and radii are in pixels.
 
 mod gaussian;
@@ -125,12 +130,69 @@ impl Filter {
         self.pdf_1d(offset.x) * self.pdf_1d(offset.y)
     }
 
+    /// The CDF of [`Self::pdf_1d`] at offset `x`: exactly 0 at and below `-radius`, exactly 1 at
+    /// and above `radius`.
+    pub fn cdf_1d(&self, x: f32) -> f32 {
+        match self {
+            Self::Box => (x + 0.5).clamp(0.0, 1.0),
+            Self::Tent { radius } => {
+                let t = (x / radius).clamp(-1.0, 1.0);
+                if t < 0.0 {
+                    0.5 * (1.0 + t) * (1.0 + t)
+                } else {
+                    1.0 - 0.5 * (1.0 - t) * (1.0 - t)
+                }
+            }
+            Self::Gaussian(g) => g.cdf_1d(x),
+        }
+    }
+
+    /// The interval of offsets, `[lo, hi)`, from the centre `centre` of a pixel that keeps a film
+    /// position inside an image axis of `size` pixels.
+    fn inside(centre: f32, size: u32) -> (f32, f32) {
+        (-centre, size as f32 - centre)
+    }
+
+    /// Maps `u ∈ [0, 1)` to an offset along one image axis of `size` pixels from the centre
+    /// `centre` of a pixel, with density proportional to `f₁` restricted to the offsets that stay
+    /// inside the image (see [`Self::sample_film_position`]). Wherever the filter's support lies
+    /// inside the image this is [`Self::sample_1d`]`(u)`, bit for bit.
+    fn sample_axis(&self, u: f32, centre: f32, size: u32) -> f32 {
+        let (lo, hi) = Self::inside(centre, size);
+        let (below, upto) = (self.cdf_1d(lo), self.cdf_1d(hi));
+        self.sample_1d(below + u * (upto - below))
+            .clamp(lo, hi.next_down())
+    }
+
+    /// The density (per pixel) with which [`Self::sample_axis`] draws `offset`.
+    fn pdf_axis(&self, offset: f32, centre: f32, size: u32) -> f32 {
+        let (lo, hi) = Self::inside(centre, size);
+        if !(offset >= lo && offset < hi) {
+            return 0.0;
+        }
+        let mass = self.cdf_1d(hi) - self.cdf_1d(lo);
+        if mass > 0.0 {
+            self.pdf_1d(offset) / mass
+        } else {
+            0.0
+        }
+    }
+
+    /// The density (per square pixel) with which the camera samples of `pixel` in a `width ×
+    /// height` image land at the film position `film` ([`Self::sample_film_position`]).
+    pub fn pixel_pdf(&self, film: Vec2, pixel: UVec2, width: u32, height: u32) -> f32 {
+        let centre = pixel.as_vec2() + Vec2::splat(0.5);
+        self.pdf_axis(film.x - centre.x, centre.x, width)
+            * self.pdf_axis(film.y - centre.y, centre.y, height)
+    }
+
     /// Calls `visit(pixel, weight)` for every pixel of a `width × height` image whose camera
-    /// samples can land at the film position `film` (pixels), with the density [`Self::pdf`] of
-    /// that offset from the pixel's centre as the weight (per square pixel, only where positive).
+    /// samples can land at the film position `film` (pixels), with the density
+    /// [`Self::pixel_pdf`] of that position as the weight (per square pixel, only where positive).
     /// A light path that reaches the film at `film` splats its contribution times this weight
-    /// into each, which estimates the same filtered pixel values as the camera samples. With the
-    /// box filter that is the one pixel containing `film`, with weight 1.
+    /// into each, which estimates the same filtered pixel values as the camera samples; a film
+    /// position outside the image reaches no pixel. With the box filter that is the one pixel
+    /// containing `film`, with weight 1.
     pub fn for_each_pixel_at(
         &self,
         film: Vec2,
@@ -148,12 +210,14 @@ impl Filter {
             return;
         }
         for y in range(film.y, height) {
-            let weight_y = self.pdf_1d(film.y - y as f32 - 0.5);
+            let centre_y = y as f32 + 0.5;
+            let weight_y = self.pdf_axis(film.y - centre_y, centre_y, height);
             if weight_y <= 0.0 {
                 continue;
             }
             for x in range(film.x, width) {
-                let weight = self.pdf_1d(film.x - x as f32 - 0.5) * weight_y;
+                let centre_x = x as f32 + 0.5;
+                let weight = self.pdf_axis(film.x - centre_x, centre_x, width) * weight_y;
                 if weight > 0.0 {
                     visit(UVec2::new(x, y), weight);
                 }
@@ -185,9 +249,19 @@ impl Filter {
     }
 
     /// The continuous film position (pixels, `(0, 0)` the top-left corner of the image) of a
-    /// camera sample for `pixel`: its centre `pixel + 0.5` plus [`sample`](Self::sample)`(u)`.
-    pub fn sample_film_position(&self, pixel: UVec2, u: Vec2) -> Vec2 {
-        pixel.as_vec2() + Vec2::splat(0.5) + self.sample(u)
+    /// camera sample for `pixel` of a `width × height` image: its centre `pixel + 0.5` plus an
+    /// offset drawn with density proportional to the filter restricted to the image. Mitsuba's
+    /// films (without `sample_border`) take samples only inside the image and give each pixel
+    /// the filter-weighted mean of the samples around it, so a pixel near the edge averages what
+    /// its filter sees inside the image; away from the edges this is the centre plus
+    /// [`sample`](Self::sample)`(u)`, bit for bit. The weight is 1 either way.
+    pub fn sample_film_position(&self, pixel: UVec2, u: Vec2, width: u32, height: u32) -> Vec2 {
+        let centre = pixel.as_vec2() + Vec2::splat(0.5);
+        centre
+            + Vec2::new(
+                self.sample_axis(u.x, centre.x, width),
+                self.sample_axis(u.y, centre.y, height),
+            )
     }
 }
 

@@ -61,20 +61,136 @@ fn values_match_mitsuba_formulas() {
 #[test]
 fn film_positions_are_offsets_from_the_pixel_centre() {
     let pixel = UVec2::new(3, 7);
+    let (width, height) = (16, 16);
     assert_eq!(
-        Filter::Box.sample_film_position(pixel, Vec2::new(0.0, 0.75)),
+        Filter::Box.sample_film_position(pixel, Vec2::new(0.0, 0.75), width, height),
         Vec2::new(3.0, 7.75)
     );
     let tent = Filter::tent(1.0).unwrap();
     assert_eq!(
-        tent.sample_film_position(pixel, Vec2::splat(0.5)),
+        tent.sample_film_position(pixel, Vec2::splat(0.5), width, height),
         Vec2::new(3.5, 7.5)
     );
     // Tent radius 1, u = 0.125: x = √0.25 − 1 = −0.5.
     assert_eq!(
-        tent.sample_film_position(pixel, Vec2::new(0.125, 0.5)),
+        tent.sample_film_position(pixel, Vec2::new(0.125, 0.5), width, height),
         Vec2::new(3.0, 7.5)
     );
+}
+
+/// `cdf_1d` is the integral of `f₁` (numerically, independent of the table) and exactly 0 and 1
+/// beyond the support, which keeps sampling away from the image's edges bit for bit untruncated.
+#[test]
+fn cdf_1d_integrates_the_filter() {
+    for (name, filter) in filters() {
+        let r = filter.radius();
+        assert_eq!(filter.cdf_1d(-r), 0.0, "{name}");
+        assert_eq!(filter.cdf_1d(r), 1.0, "{name}");
+        assert_eq!(filter.cdf_1d(-r - 3.0), 0.0, "{name}");
+        assert_eq!(filter.cdf_1d(r + 3.0), 1.0, "{name}");
+        for k in 1..100 {
+            let x = -r + 2.0 * r * k as f32 / 100.0;
+            let numeric = numeric_cdf(&filter, x);
+            assert!(
+                (f64::from(filter.cdf_1d(x)) - numeric).abs() < 2e-5,
+                "{name}: CDF({x}) = {} against {numeric}",
+                filter.cdf_1d(x)
+            );
+        }
+    }
+}
+
+/// Near the image's edges a pixel's camera samples stay inside the image, distributed as the
+/// filter restricted to it (Mitsuba's films sample only the image): chi-square at significance
+/// 0.001 per filter and corner pixel, against the truncated filter's bin masses; away from the
+/// edges the film position is the untruncated one, bit for bit.
+#[test]
+fn film_positions_near_the_edges_follow_the_filter_inside_the_image() {
+    let (width, height) = (5, 4);
+    for (seed, (name, filter)) in filters().into_iter().enumerate() {
+        for pixel in [UVec2::new(0, 0), UVec2::new(4, 3), UVec2::new(1, 2)] {
+            let centre = pixel.as_vec2() + Vec2::splat(0.5);
+            let (chi2, critical) = chi_square_truncated(&filter, pixel, width, height, seed as u32);
+            assert!(
+                chi2 < critical,
+                "{name}, pixel {pixel}: chi2 = {chi2:.1} exceeds the 0.001 critical value \
+                 {critical:.1} (replay: sampling::Rng seed {seed}, {CHI2_SAMPLES} samples)"
+            );
+            let mut rng = Rng::new(seed as u32);
+            for _ in 0..1000 {
+                let u = Vec2::new(rng.next_f32(), rng.next_f32());
+                let p = filter.sample_film_position(pixel, u, width, height);
+                assert!(
+                    p.x >= 0.0 && p.x < width as f32 && p.y >= 0.0 && p.y < height as f32,
+                    "{name}, pixel {pixel}, u {u}: film position {p} outside the image"
+                );
+                let far = filter.sample_film_position(pixel + UVec2::splat(20), u, 64, 64);
+                assert_eq!(far, centre + Vec2::splat(20.0) + filter.sample(u), "{name}");
+            }
+        }
+    }
+}
+
+/// Chi-square of `pixel`'s film positions in a `width × height` image against the filter
+/// restricted to the image, per axis bins of the offsets inside it.
+fn chi_square_truncated(
+    filter: &Filter,
+    pixel: UVec2,
+    width: u32,
+    height: u32,
+    seed: u32,
+) -> (f64, f64) {
+    const BINS: usize = 16;
+    const Z_ALPHA_0_001: f64 = 3.090;
+    let centre = pixel.as_vec2() + Vec2::splat(0.5);
+    let r = filter.radius();
+    // Per axis: the offsets inside both the support and the image, their bins and masses.
+    let axis = |c: f32, size: u32| {
+        let (lo, hi) = ((-r).max(-c), r.min(size as f32 - c));
+        let edges: Vec<f64> = (0..=BINS)
+            .map(|i| f64::from(lo) + f64::from(hi - lo) * i as f64 / BINS as f64)
+            .collect();
+        let total = integrate(filter, edges[0], edges[BINS], 4800);
+        let masses: Vec<f64> = edges
+            .windows(2)
+            .map(|e| integrate(filter, e[0], e[1], 200) / total)
+            .collect();
+        (lo, hi, masses)
+    };
+    let (x_lo, x_hi, x_mass) = axis(centre.x, width);
+    let (y_lo, y_hi, y_mass) = axis(centre.y, height);
+    let bin =
+        |v: f32, lo: f32, hi: f32| (((v - lo) / (hi - lo) * BINS as f32) as usize).min(BINS - 1);
+    let mut counts = vec![0u64; BINS * BINS];
+    let mut rng = Rng::new(seed);
+    for _ in 0..CHI2_SAMPLES {
+        let p = filter.sample_film_position(
+            pixel,
+            Vec2::new(rng.next_f32(), rng.next_f32()),
+            width,
+            height,
+        ) - centre;
+        counts[bin(p.y, y_lo, y_hi) * BINS + bin(p.x, x_lo, x_hi)] += 1;
+    }
+    let (mut chi2, mut cells, mut pooled_observed, mut pooled_expected) = (0.0, 0usize, 0.0, 0.0);
+    for (j, &py) in y_mass.iter().enumerate() {
+        for (i, &px) in x_mass.iter().enumerate() {
+            let expected = px * py * CHI2_SAMPLES as f64;
+            let observed = counts[j * BINS + i] as f64;
+            if expected < 5.0 {
+                pooled_expected += expected;
+                pooled_observed += observed;
+            } else {
+                chi2 += (observed - expected).powi(2) / expected;
+                cells += 1;
+            }
+        }
+    }
+    if pooled_expected > 0.0 {
+        chi2 += (pooled_observed - pooled_expected).powi(2) / pooled_expected;
+        cells += 1;
+    }
+    (chi2, chi2_critical(cells - 1, Z_ALPHA_0_001))
 }
 
 #[test]
@@ -243,8 +359,9 @@ fn pdf_is_the_density_of_the_sampled_offsets() {
 }
 
 /// `for_each_pixel_at` visits exactly the pixels a brute-force scan of the image finds with a
-/// positive density, once each and with that density, for film positions inside, on pixel
-/// borders and beyond the image's edges; with the box filter that is the containing pixel.
+/// positive `pixel_pdf`, once each and with that density, for film positions inside, on pixel
+/// borders and beyond the image's edges (which reach no pixel); with the box filter that is the
+/// containing pixel.
 #[test]
 fn film_positions_reach_the_pixels_whose_samples_land_there() {
     let (width, height) = (7, 5);
@@ -263,11 +380,25 @@ fn film_positions_reach_the_pixels_whose_samples_land_there() {
             let expected: Vec<(UVec2, f32)> = (0..height)
                 .flat_map(|y| (0..width).map(move |x| UVec2::new(x, y)))
                 .filter_map(|pixel| {
-                    let centre = pixel.as_vec2() + Vec2::splat(0.5);
-                    let weight = filter.pdf(film - centre);
+                    let weight = filter.pixel_pdf(film, pixel, width, height);
                     (weight > 0.0).then_some((pixel, weight))
                 })
                 .collect();
+            let inside = film.cmpge(Vec2::ZERO).all() && film.x < 7.0 && film.y < 5.0;
+            assert!(
+                inside || visited.is_empty(),
+                "{name}, film position {film}: {visited:?}"
+            );
+            // Away from the edges the weight is the untruncated density.
+            for &(pixel, weight) in &visited {
+                let centre = pixel.as_vec2() + Vec2::splat(0.5);
+                let clear = centre.cmpge(Vec2::splat(filter.radius())).all()
+                    && centre.x + filter.radius() <= 7.0
+                    && centre.y + filter.radius() <= 5.0;
+                if clear {
+                    assert_eq!(weight, filter.pdf(film - centre), "{name}, {film}, {pixel}");
+                }
+            }
             assert_eq!(visited, expected, "{name}, film position {film}");
             if name == "box" && film.cmpge(Vec2::ZERO).all() && film.x < 7.0 && film.y < 5.0 {
                 assert_eq!(visited, vec![(film.floor().as_uvec2(), 1.0)], "{film}");
