@@ -125,6 +125,9 @@ impl PathIntegrator {
         // one: emission it meets next is the light tracer's with `light_tracing` on.
         let mut caustic_chain = false;
         let mut first_vertex_non_delta = false;
+        // Whether every bounce so far was by a delta lobe: what the path finds next, neither light
+        // sampling nor the light tracer can reach.
+        let mut seen_through_delta = true;
         for depth in 1..=max_depth {
             let hidden = depth == 1 && settings.hide_emitters;
             let found = if hidden {
@@ -149,7 +152,11 @@ impl PathIntegrator {
                 && !left_to_light_tracer
                 && let Some(light) = surface.light
             {
-                let emitted = world.emitted(&surface, -ray.dir);
+                let emitted = if seen_through_delta {
+                    world.emitted_seen_through_delta(&surface, -ray.dir)
+                } else {
+                    world.emitted(&surface, -ray.dir)
+                };
                 if emitted != Vec3::ZERO {
                     let weight = self.emission_weight(&previous, Some(light), || {
                         world.lights()[light as usize].pdf_li_surface(
@@ -184,6 +191,7 @@ impl PathIntegrator {
             };
             throughput *= next.weight;
             eta_scale *= next.eta * next.eta;
+            seen_through_delta &= next.is_delta;
             if depth == 1 {
                 first_vertex_non_delta = !next.is_delta;
             } else {

@@ -43,6 +43,9 @@ pub fn radiance(
     let mut radiance = Vec3::ZERO;
     let mut throughput = Vec3::ONE;
     let mut ray = camera_ray;
+    // Whether every bounce so far was by a delta lobe: emission found next is seen by the shading
+    // normal, as the path tracer sees what neither light sampling nor light tracing reaches.
+    let mut seen_through_delta = true;
     for depth in 1..=max_depth {
         let hidden = depth == 1 && settings.hide_emitters;
         let found = if hidden {
@@ -57,7 +60,12 @@ pub fn radiance(
             break;
         };
         if !hidden {
-            radiance += throughput * world.emitted(&surface, -ray.dir);
+            radiance += throughput
+                * if seen_through_delta {
+                    world.emitted_seen_through_delta(&surface, -ray.dir)
+                } else {
+                    world.emitted(&surface, -ray.dir)
+                };
         }
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
@@ -70,7 +78,9 @@ pub fn radiance(
 
         radiance += throughput * delta_lights(world, &surface, wo, counters);
 
-        let (wi, weight) = if surface.bsdf.is_delta() {
+        let delta = surface.bsdf.is_delta();
+        seen_through_delta &= delta;
+        let (wi, weight) = if delta {
             let Some(s) = surface.bsdf.sample(wo, u_lobe, u_dir) else {
                 break;
             };
