@@ -141,7 +141,6 @@ fn chi_square_truncated(
     seed: u32,
 ) -> (f64, f64) {
     const BINS: usize = 16;
-    const Z_ALPHA_0_001: f64 = 3.090;
     let centre = pixel.as_vec2() + Vec2::splat(0.5);
     let r = filter.radius();
     // Per axis: the offsets inside both the support and the image, their bins and masses.
@@ -172,25 +171,7 @@ fn chi_square_truncated(
         ) - centre;
         counts[bin(p.y, y_lo, y_hi) * BINS + bin(p.x, x_lo, x_hi)] += 1;
     }
-    let (mut chi2, mut cells, mut pooled_observed, mut pooled_expected) = (0.0, 0usize, 0.0, 0.0);
-    for (j, &py) in y_mass.iter().enumerate() {
-        for (i, &px) in x_mass.iter().enumerate() {
-            let expected = px * py * CHI2_SAMPLES as f64;
-            let observed = counts[j * BINS + i] as f64;
-            if expected < 5.0 {
-                pooled_expected += expected;
-                pooled_observed += observed;
-            } else {
-                chi2 += (observed - expected).powi(2) / expected;
-                cells += 1;
-            }
-        }
-    }
-    if pooled_expected > 0.0 {
-        chi2 += (pooled_observed - pooled_expected).powi(2) / pooled_expected;
-        cells += 1;
-    }
-    (chi2, chi2_critical(cells - 1, Z_ALPHA_0_001))
+    chi_square_of_counts(&counts, &x_mass, &y_mass)
 }
 
 #[test]
@@ -254,7 +235,6 @@ fn chi2_critical(dof: usize, z_alpha: f64) -> f64 {
 /// samples are pooled into one.
 fn chi_square(filter: &Filter, sample: impl Fn(Vec2) -> Vec2, seed: u32) -> (f64, f64) {
     const BINS: usize = 24;
-    const Z_ALPHA_0_001: f64 = 3.090;
     let r = f64::from(filter.radius());
     let edge = |i: usize| -r + 2.0 * r * i as f64 / BINS as f64;
     let total = integrate(filter, -r, r, 4800);
@@ -270,11 +250,19 @@ fn chi_square(filter: &Filter, sample: impl Fn(Vec2) -> Vec2, seed: u32) -> (f64
         counts[bin(p.y) * BINS + bin(p.x)] += 1;
     }
 
+    chi_square_of_counts(&counts, &marginal, &marginal)
+}
+
+/// The chi-square statistic of `counts` (row-major, `y_mass.len()` rows of `x_mass.len()` cells,
+/// [`CHI2_SAMPLES`] in all) against the product of the per-axis bin masses, cells expecting
+/// fewer than 5 pooled into one, and its critical value at significance 0.001.
+fn chi_square_of_counts(counts: &[u64], x_mass: &[f64], y_mass: &[f64]) -> (f64, f64) {
+    const Z_ALPHA_0_001: f64 = 3.090;
     let (mut chi2, mut cells, mut pooled_observed, mut pooled_expected) = (0.0, 0usize, 0.0, 0.0);
-    for (j, &py) in marginal.iter().enumerate() {
-        for (i, &px) in marginal.iter().enumerate() {
+    for (j, &py) in y_mass.iter().enumerate() {
+        for (i, &px) in x_mass.iter().enumerate() {
             let expected = px * py * CHI2_SAMPLES as f64;
-            let observed = counts[j * BINS + i] as f64;
+            let observed = counts[j * x_mass.len() + i] as f64;
             if expected < 5.0 {
                 pooled_expected += expected;
                 pooled_observed += observed;
