@@ -157,8 +157,14 @@ impl Filter {
     /// `centre` of a pixel, with density proportional to `f₁` restricted to the offsets that stay
     /// inside the image (see [`Self::sample_film_position`]). Wherever the filter's support lies
     /// inside the image this is [`Self::sample_1d`]`(u)`, bit for bit.
+    #[inline]
     fn sample_axis(&self, u: f32, centre: f32, size: u32) -> f32 {
         let (lo, hi) = Self::inside(centre, size);
+        let radius = self.radius();
+        if lo <= -radius && hi >= radius {
+            // The support lies inside the image (the common case): nothing to restrict.
+            return self.sample_1d(u);
+        }
         let (below, upto) = (self.cdf_1d(lo), self.cdf_1d(hi));
         self.sample_1d(below + u * (upto - below))
             .clamp(lo, hi.next_down())
