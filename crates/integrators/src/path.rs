@@ -152,11 +152,7 @@ impl PathIntegrator {
                 && !left_to_light_tracer
                 && let Some(light) = surface.light
             {
-                let emitted = if seen_through_delta {
-                    world.emitted_seen_through_delta(&surface, -ray.dir)
-                } else {
-                    world.emitted(&surface, -ray.dir)
-                };
+                let emitted = world.emitted(&surface, -ray.dir, seen_through_delta);
                 if emitted != Vec3::ZERO {
                     let weight = self.emission_weight(&previous, Some(light), || {
                         world.lights()[light as usize].pdf_li_surface(

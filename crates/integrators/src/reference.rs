@@ -60,12 +60,7 @@ pub fn radiance(
             break;
         };
         if !hidden {
-            radiance += throughput
-                * if seen_through_delta {
-                    world.emitted_seen_through_delta(&surface, -ray.dir)
-                } else {
-                    world.emitted(&surface, -ray.dir)
-                };
+            radiance += throughput * world.emitted(&surface, -ray.dir, seen_through_delta);
         }
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();

@@ -191,22 +191,20 @@ impl World {
     }
 
     /// Radiance emitted by the surface of `surface` towards the unit direction `w`, one-sided by
-    /// the geometric normal, as light sampling sees it.
+    /// the geometric normal, as light sampling sees it; with `seen_through_delta` (emission seen
+    /// from the camera directly or through delta bounces only, which neither light sampling nor
+    /// the light tracer reaches) one-sided by the shading normal, as Mitsuba 3 sees every
+    /// emitter, by its shading frame. On a mesh with vertex normals the two sides differ near
+    /// silhouettes; elsewhere they are the same.
     #[inline]
-    pub fn emitted(&self, surface: &SurfaceHit<'_>, w: Vec3) -> Vec3 {
+    pub fn emitted(&self, surface: &SurfaceHit<'_>, w: Vec3, seen_through_delta: bool) -> Vec3 {
+        let normal = if seen_through_delta {
+            surface.hit.ns
+        } else {
+            surface.hit.ng
+        };
         surface.light.map_or(Vec3::ZERO, |l| {
-            self.lights[l as usize].radiance_towards(surface.hit.ng, w)
-        })
-    }
-
-    /// [`Self::emitted`], but one-sided by the shading normal: for emission seen from the camera
-    /// directly or through delta bounces only, which neither light sampling nor the light tracer
-    /// reaches, seen as Mitsuba 3 sees every emitter, by its shading frame. On a mesh with vertex
-    /// normals the two sides differ near silhouettes; elsewhere the two are the same.
-    #[inline]
-    pub fn emitted_seen_through_delta(&self, surface: &SurfaceHit<'_>, w: Vec3) -> Vec3 {
-        surface.light.map_or(Vec3::ZERO, |l| {
-            self.lights[l as usize].radiance_towards(surface.hit.ns, w)
+            self.lights[l as usize].radiance_towards(normal, w)
         })
     }
 

@@ -12,7 +12,7 @@
 
 mod common;
 
-use common::{Target, load_file, mis_power, render, z_test};
+use common::{NEAR_CLIP, Target, load_xml, mis_power, render, scene_xml, z_test};
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
 use render::technique::Transport;
@@ -20,21 +20,17 @@ use sampling::sampler::SamplerKind;
 
 const RADIANCE: f32 = 3.0;
 
-fn scene_xml(camera_y: f32, camera_z: f32) -> String {
-    format!(
-        r#"<scene version="3.0.0">
-    <integrator type="path"><integer name="max_depth" value="1"/></integrator>
-    <sensor type="perspective">
-        <float name="fov" value="1"/>
-        <transform name="to_world"><lookat origin="0, {camera_y}, {camera_z}" target="0, 0, 0" up="0, 0, 1"/></transform>
-        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/><rfilter type="box"/></film>
-    </sensor>
-    <shape type="obj">
+/// The emitter alone, seen from (0, `camera_y`, `camera_z`) with a 1° field of view.
+fn scene(camera_y: f32, camera_z: f32) -> String {
+    let camera =
+        format!(r#"<lookat origin="0, {camera_y}, {camera_z}" target="0, 0, 0" up="0, 0, 1"/>"#);
+    let body = format!(
+        r#"    <shape type="obj">
         <string name="filename" value="leaning.obj"/>
         <emitter type="area"><rgb name="radiance" value="{RADIANCE}"/></emitter>
-    </shape>
-</scene>"#
-    )
+    </shape>"#
+    );
+    scene_xml(1, false, &camera, 1.0, NEAR_CLIP, &body)
 }
 
 const OBJ: &str = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0.98058068 0.19611614\nf 1//1 2//1 3//1\nf 1//1 3//1 4//1\n";
@@ -44,9 +40,7 @@ fn smooth_emitters_seen_directly_emit_on_their_shading_side() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("leaning.obj"), OBJ).unwrap();
     for (camera, expected) in [((5.0, -0.5), RADIANCE), ((-5.0, 0.5), 0.0)] {
-        let path = dir.path().join("scene.xml");
-        std::fs::write(&path, scene_xml(camera.0, camera.1)).unwrap();
-        let scene = load_file(&path, &[], 8, 8);
+        let scene = load_xml(dir.path(), "scene", &scene(camera.0, camera.1), 8);
         let transports = [
             (
                 "reference",

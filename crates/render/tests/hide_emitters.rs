@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{Target, load_xml, mis_power, render, z_test};
+use common::{NEAR_CLIP, Target, load_xml, mis_power, render, scene_xml, z_test};
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
 use render::film::Film;
@@ -25,37 +25,29 @@ const SEED: u32 = 7;
 
 /// The wall and its point light, with `emitters` camera-facing emitting rectangles in front,
 /// `hide_emitters` as given.
-fn scene_xml(emitters: usize, hide_emitters: bool) -> String {
+fn scene(emitters: usize, hide_emitters: bool) -> String {
     let rectangles: String = (0..emitters)
         .map(|i| {
             let z = 1.0 + 0.5 * i as f32;
             format!(
-                r#"<shape type="rectangle">
+                r#"    <shape type="rectangle">
         <transform name="to_world"><scale value="0.6"/><translate z="{z}"/></transform>
         <emitter type="area"><rgb name="radiance" value="5"/></emitter>
-    </shape>"#
+    </shape>
+"#
             )
         })
         .collect();
-    format!(
-        r#"<scene version="3.0.0">
-    <integrator type="path">
-        <integer name="max_depth" value="2"/>
-        <boolean name="hide_emitters" value="{hide_emitters}"/>
-    </integrator>
-    <sensor type="perspective">
-        <float name="fov" value="30"/>
-        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
-        <film type="hdrfilm"><rfilter type="box"/></film>
-    </sensor>
-    <emitter type="point"><point name="position" value="0.5, 2, 0.5"/><rgb name="intensity" value="20"/></emitter>
+    let body = format!(
+        r#"    <emitter type="point"><point name="position" value="0.5, 2, 0.5"/><rgb name="intensity" value="20"/></emitter>
     <shape type="rectangle">
         <transform name="to_world"><scale value="3"/></transform>
         <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
     </shape>
-    {rectangles}
-</scene>"#
-    )
+{rectangles}"#
+    );
+    let camera = r#"<lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/>"#;
+    scene_xml(2, hide_emitters, camera, 30.0, NEAR_CLIP, &body)
 }
 
 /// `scene` rendered by `transport` with independent samples at [`SPP`] and [`SEED`].
@@ -89,7 +81,7 @@ fn largest_difference(a: &Film, b: &Film) -> (f32, UVec2) {
 #[test]
 fn hidden_emitters_show_what_lies_behind_them() {
     let dir = tempfile::tempdir().unwrap();
-    let bare = load_xml(dir.path(), "bare", &scene_xml(0, true), SIZE);
+    let bare = load_xml(dir.path(), "bare", &scene(0, true), SIZE);
     let reference = |hide_emitters| {
         Transport::Reference(ReferenceSettings {
             max_depth: Some(2),
@@ -98,7 +90,7 @@ fn hidden_emitters_show_what_lies_behind_them() {
     };
     let expected = render_at(&bare, reference(true), "reference, no emitters");
     for emitters in [1, 2] {
-        let hidden = load_xml(dir.path(), "hidden", &scene_xml(emitters, true), SIZE);
+        let hidden = load_xml(dir.path(), "hidden", &scene(emitters, true), SIZE);
         let replay = format!("{emitters} emitter(s), {SPP} spp, seed {SEED}");
 
         // The reference integrator finds the same wall points with the same numbers.
@@ -117,7 +109,7 @@ fn hidden_emitters_show_what_lies_behind_them() {
         assert_eq!(test.pass_fraction, 1.0, "mis, {replay}: {test}");
 
         // The emitters are in view: shown, the centre pixel is their radiance.
-        let shown = load_xml(dir.path(), "shown", &scene_xml(emitters, false), SIZE);
+        let shown = load_xml(dir.path(), "shown", &scene(emitters, false), SIZE);
         let centre =
             render_at(&shown, reference(false), &replay).pixel_value(UVec2::splat(SIZE / 2));
         assert!(

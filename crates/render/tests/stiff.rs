@@ -11,7 +11,8 @@
 mod common;
 
 use common::{
-    Configuration, Target, ZTest, configurations, film_mean, load_xml, mis_power, render, z_test,
+    Configuration, NEAR_CLIP, Target, ZTest, configurations, film_mean, load_xml, mis_power,
+    render, scene_xml, z_test,
 };
 use geometry::TriangleMesh;
 use glam::{UVec2, Vec2, Vec3};
@@ -25,41 +26,6 @@ use std::path::Path;
 const SIZE: u32 = 32;
 const ALPHA: f64 = 0.01;
 const REQUIRED_PASS_FRACTION: f64 = 0.9975;
-/// Mitsuba's default near clip distance of the perspective camera.
-const NEAR_CLIP: f32 = 1e-2;
-
-/// A scene file: the integrator, a pinhole camera with `to_world` elements `camera`, its field
-/// of view (degrees) and near clip distance, and `body`.
-fn scene_xml(
-    max_depth: i32,
-    hide_emitters: bool,
-    camera: &str,
-    fov: f32,
-    near_clip: f32,
-    body: &str,
-) -> String {
-    format!(
-        r#"<scene version="3.0.0">
-    <integrator type="path">
-        <integer name="max_depth" value="{max_depth}"/>
-        <boolean name="hide_emitters" value="{hide_emitters}"/>
-    </integrator>
-    <sensor type="perspective">
-        <float name="fov" value="{fov}"/>
-        <float name="near_clip" value="{near_clip}"/>
-        <transform name="to_world">{camera}</transform>
-        <film type="hdrfilm">
-            <integer name="width" value="{SIZE}"/>
-            <integer name="height" value="{SIZE}"/>
-            <rfilter type="box"/>
-        </film>
-    </sensor>
-{body}
-</scene>
-"#
-    )
-}
-
 /// A closed diffuse room, the cube [-1, 1]³ seen from inside, with a square light of edge
 /// `light_edge` and `radiance` facing down from just under the ceiling, a diffuse sphere on the
 /// floor and a camera near the front wall; `transform` (Mitsuba transform elements) is applied

@@ -50,6 +50,38 @@ pub fn load_xml(dir: &Path, name: &str, xml: &str, size: u32) -> RenderScene {
     load_file(&path, &[], size, size)
 }
 
+/// Mitsuba's default near clip distance of the perspective camera.
+pub const NEAR_CLIP: f32 = 1e-2;
+
+/// A scene file: the path integrator with `max_depth` and `hide_emitters`, a pinhole camera with
+/// `to_world` elements `camera`, its field of view (degrees) and near clip distance, a box
+/// filter, and `body`. The film's size is the loader's ([`load_xml`], [`load_file`]).
+pub fn scene_xml(
+    max_depth: i32,
+    hide_emitters: bool,
+    camera: &str,
+    fov: f32,
+    near_clip: f32,
+    body: &str,
+) -> String {
+    format!(
+        r#"<scene version="3.0.0">
+    <integrator type="path">
+        <integer name="max_depth" value="{max_depth}"/>
+        <boolean name="hide_emitters" value="{hide_emitters}"/>
+    </integrator>
+    <sensor type="perspective">
+        <float name="fov" value="{fov}"/>
+        <float name="near_clip" value="{near_clip}"/>
+        <transform name="to_world">{camera}</transform>
+        <film type="hdrfilm"><rfilter type="box"/></film>
+    </sensor>
+{body}
+</scene>
+"#
+    )
+}
+
 /// The scene file's depth as `strata render` reads it.
 pub fn max_depth(scene: &RenderScene) -> Option<u32> {
     u32::try_from(scene.desc.integrator.max_depth).ok()
