@@ -121,6 +121,7 @@ impl Subject {
             light_selection: LightSelectionMode::Power,
             russian_roulette: None,
             light_tracing: false,
+            direct_samples: None,
         }
     }
 
@@ -183,6 +184,7 @@ fn nee_on_the_small_light_box(root: &Path) -> Result<Claim, String> {
     let reference = Transport::Reference(ReferenceSettings {
         max_depth: subject.max_depth(),
         hide_emitters: false,
+        direct_samples: None,
     });
     let nee = Transport::Path(PathSettings {
         mis: Mis::Off,

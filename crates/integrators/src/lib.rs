@@ -18,5 +18,5 @@ pub use counters::{RayCounters, RayTally};
 pub use light_tracer::{CameraConnection, LightTracer};
 pub use path::PathIntegrator;
 pub use ray_log::{RayLog, ShadowRay};
-pub use settings::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+pub use settings::{DirectSamples, LightSelectionMode, Mis, PathSettings, RussianRoulette};
 pub use world::{MaterialId, SurfaceHit, World};

@@ -9,13 +9,15 @@
 //! same at every vertex whatever surface it is on): light choice (1D, with next event
 //! estimation when the scene has more than one light) and light point (2D, with next event
 //! estimation); BSDF lobe (1D, when some material chooses between lobes: a dielectric) and BSDF
-//! direction (2D) always; roulette (1D, with Russian roulette from its start depth on).
+//! direction (2D) always; roulette (1D, with Russian roulette from its start depth on). With
+//! [`DirectSamples`] (Mitsuba's `direct` integrator) the first vertex draws the light numbers once
+//! per light sample, then the BSDF numbers once per BSDF sample, and nothing else is drawn.
 
 use crate::delta_lights::delta_lights;
 use crate::light_choice::choose_light;
 use crate::optional_draw::next_1d_if;
 use crate::reference::UNBOUNDED_DEPTH_CAP;
-use crate::settings::{LightSelectionMode, Mis, PathSettings};
+use crate::settings::{DirectSamples, LightSelectionMode, Mis, PathSettings};
 use crate::uniform_direction::{sample_uniform_direction, uniform_direction_pdf};
 use crate::{RayTally, SurfaceHit, World};
 use geometry::Ray;
@@ -38,6 +40,19 @@ struct NextDirection {
     /// Relative index of refraction crossed (1 for reflection).
     eta: f32,
 }
+
+/// How many samples of each strategy are combined at a vertex, for the MIS weights.
+#[derive(Clone, Copy, Debug)]
+struct StrategyCounts {
+    light: f32,
+    bsdf: f32,
+}
+
+/// The walk's counts: one light sample and one BSDF sample per vertex.
+const ONE_EACH: StrategyCounts = StrategyCounts {
+    light: 1.0,
+    bsdf: 1.0,
+};
 
 /// The path tracer configured for one world: the settings and the light selection table.
 #[derive(Clone, Debug)]
@@ -86,10 +101,17 @@ impl PathIntegrator {
     /// path that ends sooner draws fewer, never other ones.
     pub fn sampler_dimensions(&self, vertices: u32) -> u32 {
         let settings = &self.settings;
-        let per_vertex = u32::from(settings.sample_lights)
-            * (1 + u32::from(self.draws_light_choice))
-            + u32::from(self.draws_lobe_choice)
-            + 1;
+        let per_light_sample =
+            u32::from(settings.sample_lights) * (1 + u32::from(self.draws_light_choice));
+        let per_bsdf_sample = u32::from(self.draws_lobe_choice) + 1;
+        if let Some(DirectSamples { light, bsdf }) = settings.direct_samples {
+            return if vertices == 0 {
+                0
+            } else {
+                light * per_light_sample + bsdf * per_bsdf_sample
+            };
+        }
+        let per_vertex = per_light_sample + per_bsdf_sample;
         (1..=vertices)
             .map(|depth| {
                 let roulette = settings
@@ -136,45 +158,40 @@ impl PathIntegrator {
                 world.intersect(&ray, counters)
             };
             let Some(surface) = found else {
-                let background = world.background();
-                if !hidden && background != Vec3::ZERO {
-                    let weight = self.emission_weight(&previous, world.environment(), || {
-                        world
-                            .environment()
-                            .map_or(0.0, |e| world.lights()[e as usize].pdf_li_environment())
-                    });
-                    radiance += throughput * background * weight;
+                if !hidden {
+                    radiance += self.background_found(world, &previous, ONE_EACH, throughput);
                 }
                 break;
             };
             let left_to_light_tracer = settings.light_tracing && caustic_chain;
-            if !hidden
-                && !left_to_light_tracer
-                && let Some(light) = surface.light
-            {
-                let emitted = world.emitted(&surface, -ray.dir, seen_through_delta);
-                if emitted != Vec3::ZERO {
-                    let weight = self.emission_weight(&previous, Some(light), || {
-                        world.lights()[light as usize].pdf_li_surface(
-                            previous.p,
-                            surface.hit.p,
-                            surface.hit.ng,
-                        )
-                    });
-                    radiance += throughput * emitted * weight;
-                }
+            if !hidden && !left_to_light_tracer {
+                radiance += self.emission_found(
+                    world,
+                    &surface,
+                    ray.dir,
+                    &previous,
+                    seen_through_delta,
+                    ONE_EACH,
+                    throughput,
+                );
             }
             if depth == max_depth {
                 break;
             }
             let wo = surface.frame.to_local(-ray.dir);
+            if let Some(samples) = settings.direct_samples {
+                radiance += self.direct_samples(world, &surface, wo, samples, sampler, counters);
+                break;
+            }
 
             if settings.sample_lights {
                 let u_choice = next_1d_if(sampler, self.draws_light_choice);
                 let u_point = sampler.next_2d();
                 if !surface.bsdf.is_delta() {
                     radiance += throughput
-                        * self.direct_light(world, &surface, wo, u_choice, u_point, counters);
+                        * self.direct_light(
+                            world, &surface, wo, u_choice, u_point, ONE_EACH, counters,
+                        );
                 }
             } else if !surface.bsdf.is_delta() {
                 radiance += throughput * delta_lights(world, &surface, wo, counters);
@@ -220,7 +237,121 @@ impl PathIntegrator {
         radiance
     }
 
-    /// Direct light at `surface` by one shadow ray, MIS-weighted if MIS is on.
+    /// Mitsuba's `direct` integrator at the camera ray's hit `surface`: `samples.light` light
+    /// samples and `samples.bsdf` BSDF samples, each traced to the emission it finds, MIS-weighted
+    /// by their counts and each divided by its count.
+    fn direct_samples(
+        &self,
+        world: &World,
+        surface: &SurfaceHit<'_>,
+        wo: Vec3,
+        samples: DirectSamples,
+        sampler: &mut impl Sampler,
+        counters: &mut impl RayTally,
+    ) -> Vec3 {
+        let counts = StrategyCounts {
+            light: samples.light as f32,
+            bsdf: samples.bsdf as f32,
+        };
+        let mut radiance = Vec3::ZERO;
+        if self.settings.sample_lights {
+            for _ in 0..samples.light {
+                let u_choice = next_1d_if(sampler, self.draws_light_choice);
+                let u_point = sampler.next_2d();
+                if !surface.bsdf.is_delta() {
+                    radiance += self
+                        .direct_light(world, surface, wo, u_choice, u_point, counts, counters)
+                        / counts.light;
+                }
+            }
+        } else if samples.light > 0 && !surface.bsdf.is_delta() {
+            radiance += delta_lights(world, surface, wo, counters);
+        }
+        for _ in 0..samples.bsdf {
+            let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
+            let u_dir = sampler.next_2d();
+            let Some(next) = self.next_direction(surface, wo, u_lobe, u_dir) else {
+                continue;
+            };
+            let previous = PreviousVertex {
+                p: surface.hit.p,
+                pdf_dir: next.pdf_solid_angle,
+                delta: next.is_delta,
+            };
+            let ray = Ray::spawn(
+                surface.hit.p,
+                surface.hit.ng,
+                surface.frame.to_world(next.wi),
+            );
+            let weight = next.weight / counts.bsdf;
+            radiance += match world.intersect(&ray, counters) {
+                Some(found) => self.emission_found(
+                    world,
+                    &found,
+                    ray.dir,
+                    &previous,
+                    next.is_delta,
+                    counts,
+                    weight,
+                ),
+                None => self.background_found(world, &previous, counts, weight),
+            };
+        }
+        radiance
+    }
+
+    /// The environment's radiance found by a ray that left `previous`, times `throughput` and
+    /// its MIS weight.
+    #[inline(always)]
+    fn background_found(
+        &self,
+        world: &World,
+        previous: &PreviousVertex,
+        counts: StrategyCounts,
+        throughput: Vec3,
+    ) -> Vec3 {
+        let background = world.background();
+        if background == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        let weight = self.emission_weight(previous, world.environment(), counts, || {
+            world
+                .environment()
+                .map_or(0.0, |e| world.lights()[e as usize].pdf_li_environment())
+        });
+        throughput * background * weight
+    }
+
+    /// The emission of `surface` towards `-dir` found by a ray that left `previous`, times
+    /// `throughput` and its MIS weight; `seen_through_delta` as [`World::emitted`] takes it.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn emission_found(
+        &self,
+        world: &World,
+        surface: &SurfaceHit<'_>,
+        dir: Vec3,
+        previous: &PreviousVertex,
+        seen_through_delta: bool,
+        counts: StrategyCounts,
+        throughput: Vec3,
+    ) -> Vec3 {
+        let Some(light) = surface.light else {
+            return Vec3::ZERO;
+        };
+        let emitted = world.emitted(surface, -dir, seen_through_delta);
+        if emitted == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        let weight = self.emission_weight(previous, Some(light), counts, || {
+            world.lights()[light as usize].pdf_li_surface(previous.p, surface.hit.p, surface.hit.ng)
+        });
+        throughput * emitted * weight
+    }
+
+    /// Direct light at `surface` by one shadow ray, MIS-weighted (against `counts` samples of
+    /// each strategy) if MIS is on.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn direct_light(
         &self,
@@ -229,6 +360,7 @@ impl PathIntegrator {
         wo: Vec3,
         u_choice: f32,
         u_point: Vec2,
+        counts: StrategyCounts,
         counters: &mut impl RayTally,
     ) -> Vec3 {
         let Some(selector) = &self.selector else {
@@ -268,7 +400,7 @@ impl PathIntegrator {
             } else {
                 uniform_direction_pdf(surface.bsdf, wo, chosen.wi_local)
             };
-            self.heuristic(chosen.pdf_for_mis, pdf_direction)
+            self.heuristic(counts.light, chosen.pdf_for_mis, counts.bsdf, pdf_direction)
         };
         chosen.f_cos * sample.radiance * (chosen.weight * mis_weight)
     }
@@ -305,15 +437,17 @@ impl PathIntegrator {
         }
     }
 
-    /// Weight of emission found by the walk: 1 where light sampling could not have found it,
-    /// 0 where it did and MIS is off, the MIS weight of the BSDF strategy otherwise.
+    /// Weight of emission found by the walk: 1 where light sampling could not have found it
+    /// (or took no sample), 0 where it did and MIS is off, the MIS weight of the BSDF strategy
+    /// (against `counts` samples of each) otherwise.
     fn emission_weight(
         &self,
         previous: &PreviousVertex,
         light: Option<u32>,
+        counts: StrategyCounts,
         pdf_light_solid_angle: impl FnOnce() -> f32,
     ) -> f32 {
-        if !self.settings.sample_lights || previous.delta {
+        if !self.settings.sample_lights || previous.delta || counts.light == 0.0 {
             return 1.0;
         }
         let (Some(selector), Some(light)) = (&self.selector, light) else {
@@ -323,15 +457,16 @@ impl PathIntegrator {
             return 0.0;
         }
         let pdf_light = selector.pmf(light as usize) * pdf_light_solid_angle();
-        self.heuristic(previous.pdf_dir, pdf_light)
+        self.heuristic(counts.bsdf, previous.pdf_dir, counts.light, pdf_light)
     }
 
-    /// The MIS weight of a sample with density `pdf_f` against the other strategy's `pdf_g`.
-    fn heuristic(&self, pdf_f: f32, pdf_g: f32) -> f32 {
+    /// The MIS weight of one of `n_f` samples with density `pdf_f` against `n_g` samples of the
+    /// other strategy with density `pdf_g`.
+    fn heuristic(&self, n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32) -> f32 {
         match self.settings.mis {
             Mis::Off => 1.0,
-            Mis::Balance => balance_heuristic(1.0, pdf_f, 1.0, pdf_g),
-            Mis::Power => power_heuristic(1.0, pdf_f, 1.0, pdf_g),
+            Mis::Balance => balance_heuristic(n_f, pdf_f, n_g, pdf_g),
+            Mis::Power => power_heuristic(n_f, pdf_f, n_g, pdf_g),
         }
     }
 }

@@ -7,6 +7,7 @@
 //! unbiased way to see them. Every other configuration is tested against this one.
 
 use crate::delta_lights::delta_lights;
+use crate::settings::DirectSamples;
 use crate::uniform_direction::sample_uniform_direction;
 use crate::{RayTally, World};
 use geometry::Ray;
@@ -26,6 +27,11 @@ pub struct ReferenceSettings {
     /// Hide emitters seen directly by the camera, as Mitsuba 3 does: camera rays pass through
     /// area emitters to the first surface that does not emit, and find no environment.
     pub hide_emitters: bool,
+    /// Mitsuba's `direct` integrator's sample counts (with `max_depth` 2). The reference takes
+    /// no light or BSDF samples, so the counts only say what they leave out: with no light
+    /// samples, delta lights; with no BSDF samples, what a delta surface at the first vertex
+    /// reflects or transmits.
+    pub direct_samples: Option<DirectSamples>,
 }
 
 /// Radiance (W m⁻² sr⁻¹, RGB) arriving at the camera along `ray`, one path's estimate.
@@ -71,9 +77,15 @@ pub fn radiance(
         let ng = surface.hit.ng;
         let wo = surface.frame.to_local(-ray.dir);
 
-        radiance += throughput * delta_lights(world, &surface, wo, counters);
+        let first_direct = settings.direct_samples.filter(|_| depth == 1);
+        if first_direct.is_none_or(|s| s.light > 0) {
+            radiance += throughput * delta_lights(world, &surface, wo, counters);
+        }
 
         let delta = surface.bsdf.is_delta();
+        if delta && first_direct.is_some_and(|s| s.bsdf == 0) {
+            break;
+        }
         seen_through_delta &= delta;
         let (wi, weight) = if delta {
             let Some(s) = surface.bsdf.sample(wo, u_lobe, u_dir) else {

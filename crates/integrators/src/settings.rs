@@ -43,6 +43,21 @@ pub struct RussianRoulette {
     pub start_depth: u32,
 }
 
+/// Mitsuba's `direct` integrator: at the camera ray's hit, `light` light samples and `bsdf`
+/// BSDF samples, each kind weighted by its count (the power or balance heuristic over `count ×
+/// density`, each sample divided by its count), and nothing after the next vertex. Zero samples
+/// of a kind leave out what only that kind reaches, as in Mitsuba: no light samples, no delta
+/// lights; no BSDF samples, nothing seen by way of a mirror or glass. Meant for light sampling
+/// on (every preset does); without it the light samples are only the delta lights' shadow rays
+/// and the BSDF samples find all other light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DirectSamples {
+    /// Light (emitter) samples: Mitsuba's `emitter_samples`.
+    pub light: u32,
+    /// BSDF samples, each traced to the emission it finds: Mitsuba's `bsdf_samples`.
+    pub bsdf: u32,
+}
+
 /// Every switch of [`crate::path`]. The default is the plain BSDF-sampled path tracer with
 /// Mitsuba's roulette start depth; turn techniques on one by one to measure each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,6 +85,10 @@ pub struct PathSettings {
     /// connects them to the camera; the path tracer drops the emission it would find along
     /// them. The renderer must then run the light tracer too.
     pub light_tracing: bool,
+    /// Mitsuba's `direct` integrator's sample counts at the first vertex (see [`DirectSamples`]);
+    /// `None` walks the path. With counts, `max_depth` must be 2 and roulette and light tracing
+    /// have nothing to act on.
+    pub direct_samples: Option<DirectSamples>,
 }
 
 impl Default for PathSettings {
@@ -83,6 +102,7 @@ impl Default for PathSettings {
             light_selection: LightSelectionMode::Power,
             russian_roulette: None,
             light_tracing: false,
+            direct_samples: None,
         }
     }
 }
@@ -119,6 +139,9 @@ impl PathSettings {
         }
         if self.light_tracing {
             names.push("light-tracing-caustics".to_string());
+        }
+        if let Some(DirectSamples { light, bsdf }) = self.direct_samples {
+            names.push(format!("direct-{light}-light-{bsdf}-bsdf-samples"));
         }
         names
     }

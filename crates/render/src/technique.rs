@@ -5,7 +5,7 @@ use crate::cli::{Cli, Command, IntegratorPreset, RenderArgs, SamplerKind as Samp
 use crate::driver::RenderBudget;
 use clap::Parser;
 use integrators::reference::ReferenceSettings;
-use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+use integrators::{DirectSamples, LightSelectionMode, Mis, PathSettings, RussianRoulette};
 use sampling::sampler::SamplerKind;
 use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
 
@@ -81,13 +81,30 @@ impl RenderPlan {
     }
 }
 
+/// The sample counts of a scene's `direct` integrator, `None` for `path`.
+pub fn direct_samples(kind: IntegratorKind) -> Option<DirectSamples> {
+    match kind {
+        IntegratorKind::Direct {
+            emitter_samples,
+            bsdf_samples,
+        } => Some(DirectSamples {
+            light: emitter_samples,
+            bsdf: bsdf_samples,
+        }),
+        IntegratorKind::Path => None,
+    }
+}
+
 /// The plan for rendering `desc` (with `features`) as `args` ask.
 pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> RenderPlan {
-    let max_depth = match args.max_depth {
-        Some(depth) => Some(depth),
-        None if desc.integrator.kind == IntegratorKind::Direct => Some(2),
-        None => u32::try_from(desc.integrator.max_depth).ok(),
+    let direct = direct_samples(desc.integrator.kind);
+    let max_depth = match (args.max_depth, direct) {
+        (Some(depth), _) => Some(depth),
+        (None, Some(_)) => Some(2),
+        (None, None) => u32::try_from(desc.integrator.max_depth).ok(),
     };
+    // `--max-depth` other than 2 turns a direct scene into a path-traced one.
+    let direct_samples = direct.filter(|_| max_depth == Some(2));
     let hide_emitters = desc.integrator.hide_emitters;
     let roulette = Some(RussianRoulette {
         start_depth: desc.integrator.rr_depth.max(1),
@@ -101,6 +118,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         light_selection: LightSelectionMode::Power,
         russian_roulette: roulette,
         light_tracing: false,
+        direct_samples,
     };
     let mis = PathSettings {
         mis: Mis::Power,
@@ -110,6 +128,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         IntegratorPreset::Reference => Transport::Reference(ReferenceSettings {
             max_depth,
             hide_emitters,
+            direct_samples,
         }),
         IntegratorPreset::Nee => Transport::Path(nee),
         IntegratorPreset::Mis => Transport::Path(mis),
@@ -125,11 +144,13 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
     }
     if let Transport::Path(settings) = &mut transport {
-        // `auto` traces caustics from the lights wherever that applies.
+        // `auto` traces caustics from the lights wherever that applies. A caustic path needs
+        // three vertices after the camera (diffuse, delta, light), so none at depth 2 or less.
         let auto_traces = args.integrator == IntegratorPreset::Auto;
         settings.light_tracing = (args.light_tracing || auto_traces)
             && light_tracing_applies(features)
-            && !settings.hide_emitters;
+            && !settings.hide_emitters
+            && settings.max_depth.is_none_or(|depth| depth >= 3);
     }
 
     let sampler = match args.sampler {

@@ -47,6 +47,7 @@ fn smooth_emitters_seen_directly_emit_on_their_shading_side() {
                 Transport::Reference(ReferenceSettings {
                     max_depth: Some(1),
                     hide_emitters: false,
+                    direct_samples: None,
                 }),
             ),
             ("mis", Transport::Path(mis_power(Some(1), false))),

@@ -86,6 +86,7 @@ fn hidden_emitters_show_what_lies_behind_them() {
         Transport::Reference(ReferenceSettings {
             max_depth: Some(2),
             hide_emitters,
+            direct_samples: None,
         })
     };
     let expected = render_at(&bare, reference(true), "reference, no emitters");

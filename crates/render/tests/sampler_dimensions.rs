@@ -142,3 +142,59 @@ fn many_lights_add_the_light_choice_number() {
         "no path of manylights drew at its second vertex"
     );
 }
+
+/// Mitsuba's `direct` integrator with 3 light and 2 BSDF samples, two lights and a dielectric:
+/// a camera ray that hits anything draws the light numbers (choice, point) three times, then the
+/// BSDF numbers (lobe, direction) twice, and nothing else; one that misses draws nothing.
+#[test]
+fn direct_sample_counts_repeat_the_first_vertex_draws() {
+    let dir = tempfile::tempdir().unwrap();
+    let xml = r#"<scene version="3.0.0">
+    <integrator type="direct"><integer name="emitter_samples" value="3"/><integer name="bsdf_samples" value="2"/></integrator>
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 1, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><rfilter type="box"/></film>
+    </sensor>
+    <emitter type="point"><point name="position" value="-1, 2, 1"/></emitter>
+    <shape type="sphere"><point name="center" value="1, 2, 0"/><float name="radius" value="0.3"/><emitter type="area"/></shape>
+    <shape type="sphere"><float name="radius" value="0.5"/><bsdf type="dielectric"/></shape>
+    <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><translate y="-0.5"/></transform></shape>
+</scene>"#;
+    let scene = common::load_xml(dir.path(), "direct", xml, 16);
+    let settings = render::technique::plan_from_flags(&scene, &[]).expect("a plan");
+    let render::technique::Transport::Path(settings) = settings.transport else {
+        panic!("auto plans the path tracer");
+    };
+    let integrator = PathIntegrator::new(&scene.world, settings);
+    let expected: Vec<u8> = [1, 2, 1, 2, 1, 2, 1, 2, 1, 2].into();
+    for vertices in 0..4 {
+        assert_eq!(
+            integrator.sampler_dimensions(vertices) as usize,
+            if vertices == 0 { 0 } else { expected.len() },
+            "the dimensions the integrator reports for {vertices} vertices"
+        );
+    }
+    let mut sampler = Recording {
+        inner: IndependentSampler::new(5, 4),
+        draws: Vec::new(),
+    };
+    let mut counters = RayCounters::default();
+    let mut hits = 0;
+    for y in 0..16 {
+        for x in 0..16 {
+            let pixel = UVec2::new(x, y);
+            sampler.start_pixel_sample(pixel, 0);
+            let ray = scene
+                .camera
+                .generate_ray(pixel.as_vec2() + Vec2::splat(0.5), Vec2::ZERO);
+            integrator.radiance(&scene.world, ray, &mut sampler, &mut counters);
+            let draws = &sampler.draws;
+            assert!(
+                draws.is_empty() || *draws == expected,
+                "pixel {pixel}, sample 0 (seed 5) drew {draws:?}, not {expected:?} or nothing"
+            );
+            hits += usize::from(!draws.is_empty());
+        }
+    }
+    assert!(hits > 0, "no camera ray hit the scene");
+}

@@ -8,6 +8,9 @@ pub const MAX_FILM_PIXELS: u64 = 1 << 25;
 /// Most samples per pixel a sampler may ask for: 2²⁴ (about 16.8 million).
 pub const MAX_SAMPLE_COUNT: u32 = 1 << 24;
 
+/// Most light or BSDF samples the `direct` integrator may take per camera sample: 2¹⁶.
+pub const MAX_DIRECT_SAMPLES: i64 = 1 << 16;
+
 /// Longest scene (or included) XML file read, bytes: 64 MiB. Reading stops there, so naming a
 /// device such as `/dev/zero` as the scene cannot exhaust memory.
 pub const MAX_SCENE_FILE_BYTES: u64 = 64 << 20;

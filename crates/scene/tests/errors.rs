@@ -579,3 +579,44 @@ fn hostile_xml_is_refused_with_bounded_work() {
         "the file ends inside <float> (opened at line 3, column 1)",
     );
 }
+
+#[test]
+fn direct_integrator_sample_counts() {
+    let direct = |body: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<integrator type=\"direct\">\n{body}\n</integrator>\n</scene>"
+        )
+    };
+    expect(
+        "direct_both.xml",
+        &direct(
+            "<integer name=\"shading_samples\" value=\"2\"/>\n<integer name=\"bsdf_samples\" value=\"1\"/>",
+        ),
+        4,
+        "<integer name=\"bsdf_samples\"",
+        "give either \"shading_samples\" or \"bsdf_samples\", not both",
+    );
+    expect(
+        "direct_none.xml",
+        &direct(
+            "<integer name=\"emitter_samples\" value=\"0\"/>\n<integer name=\"bsdf_samples\" value=\"0\"/>",
+        ),
+        2,
+        "<integrator type=\"direct\"",
+        "at least one emitter or BSDF sample",
+    );
+    expect(
+        "direct_negative.xml",
+        &direct("<integer name=\"emitter_samples\" value=\"-1\"/>"),
+        3,
+        "<integer name=\"emitter_samples\"",
+        "must lie in [0, 65536]",
+    );
+    expect(
+        "direct_on_path.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\">\n<integer name=\"emitter_samples\" value=\"2\"/>\n</integrator>\n</scene>",
+        3,
+        "<integer name=\"emitter_samples\"",
+        "unsupported parameter",
+    );
+}

@@ -123,6 +123,41 @@ fn bsdf_defaults_and_named_iors() {
     assert!(close(k, Vec3::new(3.983, 2.386, 1.603), 2e-3), "{k}");
 }
 
+/// `direct`'s counts as Mitsuba reads them: `shading_samples` sets both, each may be zero.
+#[test]
+fn direct_sample_counts() {
+    let kind = |body: &str| {
+        ok(
+            "direct_counts.xml",
+            &format!(
+                "<scene version=\"3.0.0\"><integrator type=\"direct\">{body}</integrator>\
+                 <sensor type=\"perspective\"/></scene>"
+            ),
+        )
+        .integrator
+        .kind
+    };
+    let direct = |emitter_samples, bsdf_samples| IntegratorKind::Direct {
+        emitter_samples,
+        bsdf_samples,
+    };
+    assert_eq!(kind(""), direct(1, 1));
+    assert_eq!(
+        kind("<integer name=\"shading_samples\" value=\"4\"/>"),
+        direct(4, 4)
+    );
+    assert_eq!(
+        kind("<integer name=\"emitter_samples\" value=\"3\"/>"),
+        direct(3, 1)
+    );
+    assert_eq!(
+        kind(
+            "<integer name=\"emitter_samples\" value=\"0\"/><integer name=\"bsdf_samples\" value=\"5\"/>"
+        ),
+        direct(0, 5)
+    );
+}
+
 #[test]
 fn thin_lens_and_focal_length() {
     let desc = ok(
@@ -138,7 +173,13 @@ fn thin_lens_and_focal_length() {
 </sensor>
 </scene>",
     );
-    assert_eq!(desc.integrator.kind, IntegratorKind::Direct);
+    assert_eq!(
+        desc.integrator.kind,
+        IntegratorKind::Direct {
+            emitter_samples: 1,
+            bsdf_samples: 1
+        }
+    );
     assert_eq!(desc.integrator.max_depth, 2);
     assert!(desc.integrator.hide_emitters);
     let lens = desc.sensor.lens.unwrap();

@@ -2,7 +2,7 @@
 //! rung, plus `auto`; rungs that cannot apply to the scene are left out.
 
 use integrators::reference::ReferenceSettings;
-use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+use integrators::{DirectSamples, LightSelectionMode, Mis, PathSettings, RussianRoulette};
 use render::technique::{RIS_CANDIDATES, Transport, auto_settings};
 use sampling::sampler::SamplerKind;
 use scene::SceneFeatures;
@@ -34,6 +34,8 @@ pub struct SceneTransport {
     pub roulette: RussianRoulette,
     /// Whether caustics by light tracing apply (`render::technique::light_tracing_applies`).
     pub light_tracing: bool,
+    /// The sample counts of a `direct` integrator (`None` for `path`).
+    pub direct_samples: Option<DirectSamples>,
 }
 
 impl SceneTransport {
@@ -49,6 +51,7 @@ impl SceneTransport {
             light_selection: LightSelectionMode::Power,
             russian_roulette: None,
             light_tracing: false,
+            direct_samples: self.direct_samples,
         }
     }
 }
@@ -76,6 +79,7 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
         transport: Transport::Reference(ReferenceSettings {
             max_depth: transport.max_depth,
             hide_emitters: transport.hide_emitters,
+            direct_samples: transport.direct_samples,
         }),
         sampler: independent,
         adaptive: false,
@@ -169,6 +173,7 @@ mod tests {
             hide_emitters: false,
             roulette: RussianRoulette { start_depth: 5 },
             light_tracing: false,
+            direct_samples: None,
         }
     }
 

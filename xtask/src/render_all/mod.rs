@@ -14,8 +14,8 @@ pub use run::render_all;
 
 use integrators::RussianRoulette;
 use ladder::SceneTransport;
-use render::technique::light_tracing_applies;
-use scene::{IntegratorKind, RenderScene};
+use render::technique::{direct_samples, light_tracing_applies};
+use scene::RenderScene;
 use std::path::{Path, PathBuf};
 
 /// A scene of the suite, loaded and built.
@@ -40,13 +40,14 @@ impl SuiteScene {
     /// What the scene file fixes for every configuration (depth as `strata render` reads it).
     fn transport(&self) -> SceneTransport {
         let integrator = &self.scene.desc.integrator;
-        let max_depth = if integrator.kind == IntegratorKind::Direct {
-            Some(2)
-        } else {
-            u32::try_from(integrator.max_depth).ok()
+        let direct_samples = direct_samples(integrator.kind);
+        let max_depth = match direct_samples {
+            Some(_) => Some(2),
+            None => u32::try_from(integrator.max_depth).ok(),
         };
         SceneTransport {
             max_depth,
+            direct_samples,
             hide_emitters: integrator.hide_emitters,
             roulette: RussianRoulette {
                 start_depth: integrator.rr_depth.max(1),

@@ -92,6 +92,7 @@ pub fn reference(scene: &RenderScene) -> Transport {
     Transport::Reference(ReferenceSettings {
         max_depth: max_depth(scene),
         hide_emitters: scene.desc.integrator.hide_emitters,
+        direct_samples: None,
     })
 }
 
@@ -149,6 +150,7 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
         light_selection: LightSelectionMode::Power,
         russian_roulette: None,
         light_tracing: false,
+        direct_samples: None,
     }
 }
 

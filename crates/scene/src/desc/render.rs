@@ -7,8 +7,16 @@ use glam::Mat4;
 pub enum IntegratorKind {
     /// `path`: unidirectional path tracing.
     Path,
-    /// `direct`: direct illumination only — the same expectation as `Path` with `max_depth` 2.
-    Direct,
+    /// `direct`: direct illumination only, by `emitter_samples` light samples and `bsdf_samples`
+    /// BSDF samples at the camera ray's hit, combined by the power heuristic over the counts.
+    /// With at least one of each, the same expectation as `Path` with `max_depth` 2; zero of a
+    /// kind leaves out what only that kind reaches (delta lights; what a mirror or glass shows).
+    Direct {
+        /// Light samples per camera sample (Mitsuba's `emitter_samples`, default 1).
+        emitter_samples: u32,
+        /// BSDF samples per camera sample (Mitsuba's `bsdf_samples`, default 1).
+        bsdf_samples: u32,
+    },
 }
 
 /// The `<integrator>` element with Mitsuba's defaults.

@@ -3,6 +3,7 @@
 use super::{no_children, unknown_type};
 use crate::desc::{IntegratorDesc, IntegratorKind};
 use crate::error::Result;
+use crate::limits::MAX_DIRECT_SAMPLES;
 use crate::params::Params;
 use crate::xml::tree::ObjectNode;
 
@@ -22,7 +23,7 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
             hide_emitters: params.boolean_or("hide_emitters", false)?,
         },
         "direct" => IntegratorDesc {
-            kind: IntegratorKind::Direct,
+            kind: direct_samples(&mut params, node)?,
             max_depth: 2,
             rr_depth: DEFAULT_RR_DEPTH as u32,
             hide_emitters: params.boolean_or("hide_emitters", false)?,
@@ -31,4 +32,31 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
     };
     params.finish()?;
     Ok(desc)
+}
+
+/// The `direct` integrator's sample counts as Mitsuba reads them: `shading_samples` (default 1)
+/// sets both, `emitter_samples` and `bsdf_samples` each (not together with `shading_samples`),
+/// and at least one sample in all.
+fn direct_samples(params: &mut Params, node: &ObjectNode) -> Result<IntegratorKind> {
+    if params.has("shading_samples") {
+        for name in ["emitter_samples", "bsdf_samples"] {
+            if params.has(name) {
+                return Err(params.loc_of(name).error(format!(
+                    "give either \"shading_samples\" or \"{name}\", not both"
+                )));
+            }
+        }
+    }
+    let shading = params.integer_in("shading_samples", 1, 0, MAX_DIRECT_SAMPLES)?;
+    let emitter_samples = params.integer_in("emitter_samples", shading, 0, MAX_DIRECT_SAMPLES)?;
+    let bsdf_samples = params.integer_in("bsdf_samples", shading, 0, MAX_DIRECT_SAMPLES)?;
+    if emitter_samples + bsdf_samples == 0 {
+        return Err(node
+            .loc
+            .error("the direct integrator needs at least one emitter or BSDF sample"));
+    }
+    Ok(IntegratorKind::Direct {
+        emitter_samples: emitter_samples as u32,
+        bsdf_samples: bsdf_samples as u32,
+    })
 }
