@@ -302,6 +302,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     let light_paths: Option<&LightPaths<'_, Worker<'_, S, T>>> =
         (costs.is_none() && light_tracer.is_some()).then_some(&trace_light_path);
     let has_lens = camera.has_lens();
+    let signed_filter = filter.has_negative_lobes();
     render_with_light_paths(
         width,
         height,
@@ -333,7 +334,11 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             if let (Some(costs), Some(before)) = (costs, rays_before) {
                 costs.add(pixel, worker.tally.counts().since(before));
             }
-            radiance
+            if signed_filter {
+                radiance * filter.sample_weight(film_position, pixel, width, height)
+            } else {
+                radiance
+            }
         },
         light_paths,
     )
@@ -345,5 +350,8 @@ pub fn film_filter(desc: FilterDesc) -> Result<Filter, FilterError> {
         FilterDesc::Box => Ok(Filter::Box),
         FilterDesc::Tent { radius } => Filter::tent(radius),
         FilterDesc::Gaussian { stddev } => Filter::gaussian(stddev),
+        FilterDesc::Mitchell { b, c } => Filter::mitchell(b, c),
+        FilterDesc::CatmullRom => Ok(Filter::catmull_rom()),
+        FilterDesc::Lanczos { lobes } => Filter::lanczos(lobes),
     }
 }

@@ -121,10 +121,24 @@ fn unsupported_things() {
     );
     expect(
         "filter.xml",
-        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n<rfilter type=\"mitchell\"/>\n</film>\n</sensor>\n</scene>",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n<rfilter type=\"bspline\"/>\n</film>\n</sensor>\n</scene>",
         5,
-        "<rfilter type=\"mitchell\">",
-        "supported: box, tent, gaussian",
+        "<rfilter type=\"bspline\">",
+        "supported: box, tent, gaussian, mitchell, catmullrom, lanczos",
+    );
+    expect(
+        "lanczos_lobes.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n<rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"0\"/></rfilter>\n</film>\n</sensor>\n</scene>",
+        5,
+        "<integer name=\"lobes\"",
+        "must lie in [1, 16]",
+    );
+    expect(
+        "mitchell_b.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n<rfilter type=\"mitchell\"><float name=\"B\" value=\"1e40\"/></rfilter>\n</film>\n</sensor>\n</scene>",
+        5,
+        "<float name=\"B\"",
+        "must be finite",
     );
 }
 

@@ -158,6 +158,47 @@ fn direct_sample_counts() {
     );
 }
 
+/// Mitsuba's filters with negative lobes and their parameters.
+#[test]
+fn filters_with_negative_lobes() {
+    let filter = |body: &str| {
+        ok(
+            "filters.xml",
+            &format!(
+                "<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\">\
+                 <film type=\"hdrfilm\">{body}</film></sensor></scene>"
+            ),
+        )
+        .film
+        .filter
+    };
+    assert_eq!(
+        filter("<rfilter type=\"mitchell\"/>"),
+        FilterDesc::Mitchell {
+            b: 1.0 / 3.0,
+            c: 1.0 / 3.0
+        }
+    );
+    assert_eq!(
+        filter(
+            "<rfilter type=\"mitchell\"><float name=\"B\" value=\"0.5\"/><float name=\"C\" value=\"0.25\"/></rfilter>"
+        ),
+        FilterDesc::Mitchell { b: 0.5, c: 0.25 }
+    );
+    assert_eq!(
+        filter("<rfilter type=\"catmullrom\"/>"),
+        FilterDesc::CatmullRom
+    );
+    assert_eq!(
+        filter("<rfilter type=\"lanczos\"/>"),
+        FilterDesc::Lanczos { lobes: 3 }
+    );
+    assert_eq!(
+        filter("<rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"2\"/></rfilter>"),
+        FilterDesc::Lanczos { lobes: 2 }
+    );
+}
+
 #[test]
 fn thin_lens_and_focal_length() {
     let desc = ok(

@@ -1,9 +1,9 @@
-//! Pixel reconstruction filters matching Mitsuba 3's `rfilter` plugins (`box`, `tent`, `gaussian`),
-//! sampled by *filter importance sampling*.
+//! Pixel reconstruction filters matching Mitsuba 3's `rfilter` plugins (`box`, `tent`, `gaussian`,
+//! `mitchell`, `catmullrom`, `lanczos`), sampled by *filter importance sampling*.
 //!
 //! Mitsuba splats every sample into all pixels within the filter radius and divides by the summed
 //! filter weights. Strata instead draws each camera sample's offset from the pixel centre with density
-//! proportional to the (separable, non-negative) filter, so every sample has weight 1: a pixel's
+//! proportional to the (separable) filter, so every sample of a non-negative filter has weight 1: a pixel's
 //! value is the plain mean of its own samples, with the same expectation as Mitsuba's weighted
 //! average (`∫ f(x) L(x) dx / ∫ f(x) dx`). Pixels are then independent of each other, which keeps
 //! images bit-identical whatever the number of threads.
@@ -13,9 +13,16 @@
 //! what its filter sees inside the image. Strata's offsets are drawn from the filter restricted
 //! to the image likewise (per axis, since the filter is separable and the image a rectangle).
 //!
+//! Filters with negative lobes (Mitchell–Netravali, Catmull–Rom, Lanczos) are sampled by `|f|`,
+//! and each camera sample carries the weight `sign(f) · ∫|f| / ∫f` (over the offsets inside the
+//! image), so the plain mean still estimates `∫ f L / ∫ f`; light paths splat `f / ∫f` (signed).
+//!
 //! All offsets and radii are in pixels.
 
 mod gaussian;
+mod lanczos;
+mod mitchell;
+mod table;
 #[cfg(test)]
 mod tests;
 
@@ -24,8 +31,10 @@ use std::fmt;
 use glam::{UVec2, Vec2};
 
 pub use gaussian::GaussianFilter;
+pub use lanczos::{LanczosFilter, MAX_LANCZOS_LOBES};
+pub use mitchell::{MITCHELL_RADIUS, MitchellFilter};
 
-/// A separable, non-negative pixel reconstruction filter `f(x, y) = f₁(x) f₁(y)`.
+/// A separable pixel reconstruction filter `f(x, y) = f₁(x) f₁(y)`.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Filter {
     /// Mitsuba's `box`: `f₁(x) = 1` on `[-0.5, 0.5)`, so each sample stays inside its pixel.
@@ -38,6 +47,11 @@ pub enum Filter {
     /// Mitsuba's `gaussian`: a Gaussian truncated at 4 standard deviations, shifted down so it
     /// reaches zero there. Mitsuba's default filter (standard deviation 0.5 pixels).
     Gaussian(GaussianFilter),
+    /// Mitsuba's `mitchell` (and, with `B = 0`, `C = 1/2`, its `catmullrom`): a cubic of radius
+    /// 2 pixels, negative between 1 and 2 for the usual parameters.
+    Mitchell(MitchellFilter),
+    /// Mitsuba's `lanczos`: a windowed sinc with alternating lobes, radius = lobe count.
+    Lanczos(LanczosFilter),
 }
 
 /// A filter parameter outside its valid range.
@@ -47,14 +61,16 @@ pub struct FilterError {
     pub parameter: &'static str,
     /// The rejected value.
     pub value: f32,
+    /// What the value must be, e.g. `"positive and finite"`.
+    pub requirement: &'static str,
 }
 
 impl fmt::Display for FilterError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{} must be positive and finite, got {}",
-            self.parameter, self.value
+            "{} must be {}, got {}",
+            self.parameter, self.requirement, self.value
         )
     }
 }
@@ -66,7 +82,11 @@ fn check_positive(parameter: &'static str, value: f32) -> Result<f32, FilterErro
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(FilterError { parameter, value })
+        Err(FilterError {
+            parameter,
+            value,
+            requirement: "positive and finite",
+        })
     }
 }
 
@@ -83,12 +103,38 @@ impl Filter {
         Ok(Self::Gaussian(GaussianFilter::new(stddev)?))
     }
 
+    /// Mitsuba's `mitchell` filter with parameters `B` and `C` (Mitsuba's defaults 1/3, 1/3).
+    pub fn mitchell(b: f32, c: f32) -> Result<Self, FilterError> {
+        Ok(Self::Mitchell(MitchellFilter::new(b, c)?))
+    }
+
+    /// Mitsuba's `catmullrom` filter.
+    pub fn catmull_rom() -> Self {
+        Self::Mitchell(MitchellFilter::catmull_rom())
+    }
+
+    /// Mitsuba's `lanczos` filter with `lobes` lobes (Mitsuba's default 3).
+    pub fn lanczos(lobes: u32) -> Result<Self, FilterError> {
+        Ok(Self::Lanczos(LanczosFilter::new(lobes)?))
+    }
+
     /// Half-width of the filter's square support, in pixels.
     pub fn radius(&self) -> f32 {
         match self {
             Self::Box => 0.5,
             Self::Tent { radius } => *radius,
             Self::Gaussian(g) => g.radius(),
+            Self::Mitchell(_) => MITCHELL_RADIUS,
+            Self::Lanczos(l) => l.lobes() as f32,
+        }
+    }
+
+    /// Whether `f₁` is negative somewhere, so that camera samples carry signed weights.
+    pub fn has_negative_lobes(&self) -> bool {
+        match self {
+            Self::Box | Self::Tent { .. } | Self::Gaussian(_) => false,
+            Self::Mitchell(m) => m.table().has_negative_lobes(),
+            Self::Lanczos(l) => l.table().has_negative_lobes(),
         }
     }
 
@@ -105,6 +151,8 @@ impl Filter {
             }
             Self::Tent { radius } => (1.0 - x.abs() / radius).max(0.0),
             Self::Gaussian(g) => g.eval_1d(x),
+            Self::Mitchell(m) => m.eval_1d(x),
+            Self::Lanczos(l) => l.eval_1d(x),
         }
     }
 
@@ -113,13 +161,34 @@ impl Filter {
         self.eval_1d(offset.x) * self.eval_1d(offset.y)
     }
 
-    /// The density (per pixel) with which [`Self::sample_1d`] draws offset `x`: `f₁` divided by
-    /// its integral (for the gaussian, its tabulated interpolant's).
+    /// The density (per pixel) with which [`Self::sample_1d`] draws offset `x`: `|f₁|` divided by
+    /// its integral (for the tabulated filters, their interpolants').
     pub fn pdf_1d(&self, x: f32) -> f32 {
         match self {
             Self::Box => self.eval_1d(x),
             Self::Tent { radius } => self.eval_1d(x) / radius,
             Self::Gaussian(g) => g.pdf_1d(x),
+            Self::Mitchell(m) => m.table().pdf(x),
+            Self::Lanczos(l) => l.table().pdf(x),
+        }
+    }
+
+    /// `f₁` (signed) divided by the same integral as [`Self::pdf_1d`]: equal to it wherever the
+    /// filter is not negative.
+    pub fn signed_pdf_1d(&self, x: f32) -> f32 {
+        match self {
+            Self::Mitchell(m) => m.table().signed_pdf(x),
+            Self::Lanczos(l) => l.table().signed_pdf(x),
+            _ => self.pdf_1d(x),
+        }
+    }
+
+    /// The integral of [`Self::signed_pdf_1d`] from `-radius` to `x`.
+    pub fn signed_cdf_1d(&self, x: f32) -> f32 {
+        match self {
+            Self::Mitchell(m) => m.table().signed_cdf(x),
+            Self::Lanczos(l) => l.table().signed_cdf(x),
+            _ => self.cdf_1d(x),
         }
     }
 
@@ -144,6 +213,8 @@ impl Filter {
                 }
             }
             Self::Gaussian(g) => g.cdf_1d(x),
+            Self::Mitchell(m) => m.table().cdf(x),
+            Self::Lanczos(l) => l.table().cdf(x),
         }
     }
 
@@ -184,6 +255,50 @@ impl Filter {
         }
     }
 
+    /// The weight (per pixel) with which a film position at `offset` from the centre `centre`
+    /// counts towards that pixel along one image axis of `size` pixels: `f₁` divided by its
+    /// integral over the offsets inside the image. For filters without negative lobes this is
+    /// [`Self::pdf_axis`].
+    fn weight_axis(&self, offset: f32, centre: f32, size: u32) -> f32 {
+        if !self.has_negative_lobes() {
+            return self.pdf_axis(offset, centre, size);
+        }
+        let (lo, hi) = Self::inside(centre, size);
+        if !(offset >= lo && offset < hi) {
+            return 0.0;
+        }
+        let mass = self.signed_cdf_1d(hi) - self.signed_cdf_1d(lo);
+        if mass > 0.0 {
+            self.signed_pdf_1d(offset) / mass
+        } else {
+            0.0
+        }
+    }
+
+    /// The weight (per square pixel) with which the film position `film` counts towards `pixel`
+    /// of a `width × height` image: the filter at `film − centre(pixel)` divided by its integral
+    /// over the image. For filters without negative lobes, [`Self::pixel_pdf`].
+    pub fn pixel_weight(&self, film: Vec2, pixel: UVec2, width: u32, height: u32) -> f32 {
+        let centre = pixel.as_vec2() + Vec2::splat(0.5);
+        self.weight_axis(film.x - centre.x, centre.x, width)
+            * self.weight_axis(film.y - centre.y, centre.y, height)
+    }
+
+    /// The weight of a camera sample of `pixel` drawn at `film` by
+    /// [`Self::sample_film_position`]: [`Self::pixel_weight`] over [`Self::pixel_pdf`], that is
+    /// `sign(f) · ∫|f| / ∫f` over the image; exactly 1 for filters without negative lobes.
+    pub fn sample_weight(&self, film: Vec2, pixel: UVec2, width: u32, height: u32) -> f32 {
+        if !self.has_negative_lobes() {
+            return 1.0;
+        }
+        let pdf = self.pixel_pdf(film, pixel, width, height);
+        if pdf > 0.0 {
+            self.pixel_weight(film, pixel, width, height) / pdf
+        } else {
+            0.0
+        }
+    }
+
     /// The density (per square pixel) with which the camera samples of `pixel` in a `width ×
     /// height` image land at the film position `film` ([`Self::sample_film_position`]).
     pub fn pixel_pdf(&self, film: Vec2, pixel: UVec2, width: u32, height: u32) -> f32 {
@@ -193,8 +308,9 @@ impl Filter {
     }
 
     /// Calls `visit(pixel, weight)` for every pixel of a `width × height` image whose camera
-    /// samples can land at the film position `film` (pixels), with the density
-    /// [`Self::pixel_pdf`] of that position as the weight (per square pixel, only where positive).
+    /// samples can land at the film position `film` (pixels), with [`Self::pixel_weight`] (per
+    /// square pixel, the density [`Self::pixel_pdf`] for filters without negative lobes; only
+    /// where it is not zero).
     /// A light path that reaches the film at `film` splats its contribution times this weight
     /// into each, which estimates the same filtered pixel values as the camera samples; a film
     /// position outside the image reaches no pixel. With the box filter that is the one pixel
@@ -217,14 +333,14 @@ impl Filter {
         }
         for y in range(film.y, height) {
             let centre_y = y as f32 + 0.5;
-            let weight_y = self.pdf_axis(film.y - centre_y, centre_y, height);
-            if weight_y <= 0.0 {
+            let weight_y = self.weight_axis(film.y - centre_y, centre_y, height);
+            if weight_y == 0.0 {
                 continue;
             }
             for x in range(film.x, width) {
                 let centre_x = x as f32 + 0.5;
-                let weight = self.pdf_axis(film.x - centre_x, centre_x, width) * weight_y;
-                if weight > 0.0 {
+                let weight = self.weight_axis(film.x - centre_x, centre_x, width) * weight_y;
+                if weight != 0.0 {
                     visit(UVec2::new(x, y), weight);
                 }
             }
@@ -232,7 +348,7 @@ impl Filter {
     }
 
     /// Maps a uniform `u ∈ [0, 1)` to an offset in `[-radius, radius]` (pixels) distributed with
-    /// density proportional to `f₁`. Monotonic in `u`.
+    /// density proportional to `|f₁|`. Monotonic in `u`.
     pub fn sample_1d(&self, u: f32) -> f32 {
         match self {
             Self::Box => u - 0.5,
@@ -244,12 +360,15 @@ impl Filter {
                 }
             }
             Self::Gaussian(g) => g.sample_1d(u),
+            Self::Mitchell(m) => m.table().sample(u),
+            Self::Lanczos(l) => l.table().sample(u),
         }
     }
 
     /// Maps a uniform `u ∈ [0, 1)²` to an offset from the pixel centre (pixels) distributed with
-    /// density proportional to the filter. The sample's weight is exactly 1 for these
-    /// non-negative filters (up to the gaussian's tabulation, accurate to about 1e-5).
+    /// density proportional to `|f|`. The sample's weight is exactly 1 for filters without negative
+    /// lobes (up to the tabulated filters' interpolation, accurate to about 1e-5), and
+    /// [`Self::sample_weight`] for the others.
     pub fn sample(&self, u: Vec2) -> Vec2 {
         Vec2::new(self.sample_1d(u.x), self.sample_1d(u.y))
     }
@@ -260,7 +379,8 @@ impl Filter {
     /// films (without `sample_border`) take samples only inside the image and give each pixel
     /// the filter-weighted mean of the samples around it, so a pixel near the edge averages what
     /// its filter sees inside the image; away from the edges this is the centre plus
-    /// [`sample`](Self::sample)`(u)`, bit for bit. The weight is 1 either way.
+    /// [`sample`](Self::sample)`(u)`, bit for bit. The sample's weight is
+    /// [`Self::sample_weight`]: 1 for filters without negative lobes.
     pub fn sample_film_position(&self, pixel: UVec2, u: Vec2, width: u32, height: u32) -> Vec2 {
         let centre = pixel.as_vec2() + Vec2::splat(0.5);
         centre

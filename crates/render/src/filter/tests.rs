@@ -1,12 +1,13 @@
 //! Tests of the reconstruction filters: values against Mitsuba's formulas, inverse-CDF accuracy
-//! against numerically integrated CDFs, and a chi-square goodness-of-fit test of 2D sampling.
+//! against numerically integrated CDFs, a chi-square goodness-of-fit test of 2D sampling (by `|f|`
+//! for filters with negative lobes), and the signed sample weights' estimates of filtered means.
 
 use glam::{UVec2, Vec2};
 
 use super::Filter;
 use sampling::Rng;
 
-/// The filters under test: Mitsuba's three defaults plus non-default parameters.
+/// The filters under test: Mitsuba's six with their defaults plus non-default parameters.
 fn filters() -> Vec<(&'static str, Filter)> {
     vec![
         ("box", Filter::Box),
@@ -14,22 +15,29 @@ fn filters() -> Vec<(&'static str, Filter)> {
         ("tent r=1.7", Filter::tent(1.7).unwrap()),
         ("gaussian sd=0.5", Filter::gaussian(0.5).unwrap()),
         ("gaussian sd=0.3", Filter::gaussian(0.3).unwrap()),
+        ("mitchell", Filter::mitchell(1.0 / 3.0, 1.0 / 3.0).unwrap()),
+        ("catmullrom", Filter::catmull_rom()),
+        ("lanczos 3", Filter::lanczos(3).unwrap()),
+        ("lanczos 1", Filter::lanczos(1).unwrap()),
     ]
 }
 
-/// `∫_a^b f₁(x) dx` by composite two-point Gauss–Legendre quadrature over `n` intervals, from
-/// `eval_1d` alone. It never evaluates at the interval ends, so the box filter's half-open
-/// support does not bias it.
-fn integrate(filter: &Filter, a: f64, b: f64, n: usize) -> f64 {
+/// `∫_a^b g(x) dx` by composite two-point Gauss–Legendre quadrature over `n` intervals. It never
+/// evaluates at the interval ends, so the box filter's half-open support does not bias it.
+fn quadrature(g: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
     let h = (b - a) / n as f64;
     let offset = 0.5 * h / 3f64.sqrt();
-    let f = |x: f64| f64::from(filter.eval_1d(x as f32));
     (0..n)
         .map(|i| {
             let mid = a + (i as f64 + 0.5) * h;
-            0.5 * h * (f(mid - offset) + f(mid + offset))
+            0.5 * h * (g(mid - offset) + g(mid + offset))
         })
         .sum()
+}
+
+/// `∫_a^b |f₁(x)| dx` (the sampling density's mass) from `eval_1d` alone.
+fn integrate(filter: &Filter, a: f64, b: f64, n: usize) -> f64 {
+    quadrature(|x| f64::from(filter.eval_1d(x as f32)).abs(), a, b, n)
 }
 
 /// The normalised CDF of `f₁` at `x`, by numerical integration independent of the sampler.
@@ -56,6 +64,32 @@ fn values_match_mitsuba_formulas() {
         (gauss.eval(Vec2::new(0.5, 0.0)) - gauss.eval_1d(0.5) * gauss.eval_1d(0.0)).abs() < 1e-7
     );
     assert_eq!(Filter::default(), gauss);
+    // Mitchell–Netravali, B = C = 1/3: (6 − 2B)/6 at 0, (12 − 9B − 6C − 18 + 12B + 6C + 6 − 2B)/6 at
+    // 1, and (−7/3·1.5³ + 12·1.5² − 20·1.5 + 32/3)/6 at 1.5, in its negative lobe.
+    let mitchell = Filter::mitchell(1.0 / 3.0, 1.0 / 3.0).unwrap();
+    assert!((mitchell.eval_1d(0.0) - 8.0 / 9.0).abs() < 1e-6);
+    assert!((mitchell.eval_1d(-1.0) - 1.0 / 18.0).abs() < 1e-6);
+    let at_1_5 = (-7.0 / 3.0 * 3.375 + 12.0 * 2.25 - 30.0 + 32.0 / 3.0) / 6.0;
+    assert!((mitchell.eval_1d(1.5) - at_1_5).abs() < 1e-6 && at_1_5 < 0.0);
+    assert_eq!(mitchell.eval_1d(2.0), 0.0);
+    assert!(mitchell.has_negative_lobes());
+    // The cubic B-spline (B = 1, C = 0) is positive: its samples keep weight 1.
+    assert!(!Filter::mitchell(1.0, 0.0).unwrap().has_negative_lobes());
+    let catmull_rom = Filter::catmull_rom();
+    assert!((catmull_rom.eval_1d(0.0) - 1.0).abs() < 1e-6);
+    assert!(catmull_rom.eval_1d(1.0).abs() < 1e-6);
+    // Lanczos, 3 lobes: sin(πx) sin(πx/3) / (π² x² / 3); at 1.5, −1 / (π² · 0.75).
+    let lanczos = Filter::lanczos(3).unwrap();
+    assert_eq!(lanczos.radius(), 3.0);
+    assert_eq!(lanczos.eval_1d(0.0), 1.0);
+    let expected = -1.0 / (std::f32::consts::PI.powi(2) * 0.75);
+    assert!((lanczos.eval_1d(1.5) - expected).abs() < 1e-6);
+    assert_eq!(lanczos.eval_1d(3.5), 0.0);
+    for (name, filter) in filters() {
+        let signed =
+            name.starts_with("mitchell") || name.starts_with("catmullrom") || name == "lanczos 3";
+        assert_eq!(filter.has_negative_lobes(), signed, "{name}");
+    }
 }
 
 #[test]
@@ -185,6 +219,12 @@ fn invalid_parameters_are_errors() {
         message.contains("gaussian stddev") && message.contains("-2"),
         "{message}"
     );
+    for lobes in [0, 17] {
+        let message = Filter::lanczos(lobes).unwrap_err().to_string();
+        assert!(message.contains("lanczos lobes"), "{message}");
+    }
+    let message = Filter::mitchell(f32::NAN, 0.0).unwrap_err().to_string();
+    assert!(message.contains("mitchell B must be finite"), "{message}");
 }
 
 /// `sample_1d` inverts the CDF: the numerically integrated CDF at the sample equals `u`
@@ -347,9 +387,11 @@ fn pdf_is_the_density_of_the_sampled_offsets() {
 }
 
 /// `for_each_pixel_at` visits exactly the pixels a brute-force scan of the image finds with a
-/// positive `pixel_pdf`, once each and with that density, for film positions inside, on pixel
+/// non-zero `pixel_weight`, once each and with that weight, for film positions inside, on pixel
 /// borders and beyond the image's edges (which reach no pixel); with the box filter that is the
-/// containing pixel.
+/// containing pixel. Away from the edges the weight is the filter divided by its integral: the
+/// sampling density for filters without negative lobes, and within 1e-4 (relative to the peak)
+/// of `f(x) f(y) / (∫f)²` by quadrature for the others.
 #[test]
 fn film_positions_reach_the_pixels_whose_samples_land_there() {
     let (width, height) = (7, 5);
@@ -368,8 +410,8 @@ fn film_positions_reach_the_pixels_whose_samples_land_there() {
             let expected: Vec<(UVec2, f32)> = (0..height)
                 .flat_map(|y| (0..width).map(move |x| UVec2::new(x, y)))
                 .filter_map(|pixel| {
-                    let weight = filter.pixel_pdf(film, pixel, width, height);
-                    (weight > 0.0).then_some((pixel, weight))
+                    let weight = filter.pixel_weight(film, pixel, width, height);
+                    (weight != 0.0).then_some((pixel, weight))
                 })
                 .collect();
             let inside = film.cmpge(Vec2::ZERO).all() && film.x < 7.0 && film.y < 5.0;
@@ -377,20 +419,88 @@ fn film_positions_reach_the_pixels_whose_samples_land_there() {
                 inside || visited.is_empty(),
                 "{name}, film position {film}: {visited:?}"
             );
-            // Away from the edges the weight is the untruncated density.
+            // Away from the edges the weight is the untruncated filter over its integral.
             for &(pixel, weight) in &visited {
                 let centre = pixel.as_vec2() + Vec2::splat(0.5);
                 let clear = centre.cmpge(Vec2::splat(filter.radius())).all()
                     && centre.x + filter.radius() <= 7.0
                     && centre.y + filter.radius() <= 5.0;
-                if clear {
-                    assert_eq!(weight, filter.pdf(film - centre), "{name}, {film}, {pixel}");
+                if !clear {
+                    continue;
+                }
+                let offset = film - centre;
+                if filter.has_negative_lobes() {
+                    let expected = f64::from(filter.eval(offset)) / signed_total(&filter).powi(2);
+                    let peak = 1.0 / signed_total(&filter).powi(2);
+                    assert!(
+                        (f64::from(weight) - expected).abs() < 1e-4 * peak,
+                        "{name}, {film}, {pixel}: weight {weight} against {expected}"
+                    );
+                } else {
+                    assert_eq!(weight, filter.pdf(offset), "{name}, {film}, {pixel}");
                 }
             }
             assert_eq!(visited, expected, "{name}, film position {film}");
             if name == "box" && film.cmpge(Vec2::ZERO).all() && film.x < 7.0 && film.y < 5.0 {
                 assert_eq!(visited, vec![(film.floor().as_uvec2(), 1.0)], "{film}");
             }
+        }
+    }
+}
+
+/// `∫ f₁` over the support by quadrature, signed.
+fn signed_total(filter: &Filter) -> f64 {
+    let r = f64::from(filter.radius());
+    quadrature(|x| f64::from(filter.eval_1d(x as f32)), -r, r, 4800)
+}
+
+/// Camera samples with their weights estimate a pixel's filtered mean of a test image `g`,
+/// `∫ f g / ∫ f` over the offsets inside the image, for a pixel away from the edges and for one
+/// at a corner (where the filter is cut by two edges): the mean of `weight · g` over 400,000
+/// samples (fixed seeds) lies within 5 standard errors of the quadrature value. The weights are
+/// 1 for filters without negative lobes.
+#[test]
+fn sample_weights_estimate_the_filtered_mean() {
+    const SAMPLES: usize = 400_000;
+    let (width, height) = (9, 8);
+    // A smooth test image with a slope and a bump, in film coordinates.
+    let g = |p: Vec2| 1.0 + 0.3 * f64::from(p.x) + (f64::from(p.y) - 1.0).powi(2);
+    for (seed, (name, filter)) in filters().into_iter().enumerate() {
+        for pixel in [UVec2::new(4, 4), UVec2::new(0, 0)] {
+            let centre = pixel.as_vec2() + Vec2::splat(0.5);
+            let r = f64::from(filter.radius());
+            let f = |x: f64| f64::from(filter.eval_1d(x as f32));
+            let (x_lo, x_hi) = (
+                (-r).max(-f64::from(centre.x)),
+                r.min(f64::from(width) - f64::from(centre.x)),
+            );
+            let (y_lo, y_hi) = (
+                (-r).max(-f64::from(centre.y)),
+                r.min(f64::from(height) - f64::from(centre.y)),
+            );
+            // g is a sum of separable terms; integrate each against f(x) f(y).
+            let cx = f64::from(centre.x);
+            let cy = f64::from(centre.y);
+            let ix = |k: i32| quadrature(|x| f(x) * (cx + x).powi(k), x_lo, x_hi, 4000);
+            let iy = |k: i32| quadrature(|y| f(y) * (cy + y - 1.0).powi(k), y_lo, y_hi, 4000);
+            let expected = (ix(0) * iy(0) + 0.3 * ix(1) * iy(0) + ix(0) * iy(2)) / (ix(0) * iy(0));
+            let mut rng = Rng::new(100 + seed as u32);
+            let (mut sum, mut sum_sq) = (0.0, 0.0);
+            for _ in 0..SAMPLES {
+                let u = Vec2::new(rng.next_f32(), rng.next_f32());
+                let film = filter.sample_film_position(pixel, u, width, height);
+                let value = f64::from(filter.sample_weight(film, pixel, width, height)) * g(film);
+                sum += value;
+                sum_sq += value * value;
+            }
+            let mean = sum / SAMPLES as f64;
+            let error = ((sum_sq / SAMPLES as f64 - mean * mean) / SAMPLES as f64).sqrt();
+            assert!(
+                (mean - expected).abs() < 5.0 * error + 1e-4 * expected,
+                "{name}, pixel {pixel}: mean {mean} ± {error} against {expected} \
+                 (replay: sampling::Rng seed {}, {SAMPLES} samples)",
+                100 + seed
+            );
         }
     }
 }

@@ -121,6 +121,20 @@ pub enum FilterDesc {
         /// Standard deviation in pixels.
         stddev: f32,
     },
+    /// `mitchell`: the Mitchell–Netravali cubic of radius 2 pixels (defaults `B = C = 1/3`).
+    Mitchell {
+        /// Mitsuba's `B`.
+        b: f32,
+        /// Mitsuba's `C`.
+        c: f32,
+    },
+    /// `catmullrom`: the Catmull–Rom cubic (Mitchell–Netravali with `B = 0`, `C = 1/2`).
+    CatmullRom,
+    /// `lanczos`: a windowed sinc of radius `lobes` pixels (default 3).
+    Lanczos {
+        /// Number of lobes, 1 to 16.
+        lobes: u32,
+    },
 }
 
 /// The film (`<film type="hdrfilm">`).

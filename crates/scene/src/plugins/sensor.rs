@@ -255,10 +255,39 @@ fn filter_desc(node: &ObjectNode) -> Result<FilterDesc> {
         "gaussian" => FilterDesc::Gaussian {
             stddev: positive(&mut params, "stddev", 0.5)?,
         },
-        _ => return Err(unknown_type(node, &["box", "tent", "gaussian"])),
+        "mitchell" => FilterDesc::Mitchell {
+            b: finite(&mut params, "B", 1.0 / 3.0)?,
+            c: finite(&mut params, "C", 1.0 / 3.0)?,
+        },
+        "catmullrom" => FilterDesc::CatmullRom,
+        "lanczos" => FilterDesc::Lanczos {
+            lobes: params.integer_in("lobes", 3, 1, 16)? as u32,
+        },
+        _ => return Err(unknown_type(node, &FILTERS)),
     };
     params.finish()?;
     Ok(filter)
+}
+
+/// The `rfilter` plugins.
+const FILTERS: [&str; 6] = [
+    "box",
+    "tent",
+    "gaussian",
+    "mitchell",
+    "catmullrom",
+    "lanczos",
+];
+
+/// A float parameter with a default that must be finite in single precision.
+fn finite(params: &mut Params, name: &'static str, default: f64) -> Result<f32> {
+    let value = params.float_or(name, default)?;
+    if !(value as f32).is_finite() {
+        return Err(params
+            .loc_of(name)
+            .error(format!("\"{name}\" must be finite, got {value}")));
+    }
+    Ok(value as f32)
 }
 
 /// A positive float parameter with a default.
