@@ -79,32 +79,44 @@ fn check(name: &str, light_choice: bool, lobe_choice: bool) -> usize {
             "{name}: the dimensions the integrator reports for {vertices} vertices"
         );
     }
+    let mut longest = 0;
+    each_path_draws(&scene, &integrator, 4, |pixel, index, draws| {
+        assert!(
+            draws.len() <= expected.len() && expected.starts_with(draws),
+            "{name}: pixel {pixel}, sample {index} (seed 5) drew {draws:?}, \
+             not a prefix of {expected:?}"
+        );
+        longest = longest.max(draws.len());
+    });
+    longest
+}
+
+/// Traces `samples` paths through the centre of each of the scene's 16 × 16 pixels with
+/// independent numbers (seed 5) and hands `visit` each path's pixel, sample index and draws.
+fn each_path_draws(
+    scene: &scene::RenderScene,
+    integrator: &PathIntegrator,
+    samples: u32,
+    mut visit: impl FnMut(UVec2, u32, &[u8]),
+) {
     let mut sampler = Recording {
         inner: IndependentSampler::new(5, 4),
         draws: Vec::new(),
     };
     let mut counters = RayCounters::default();
-    let mut longest = 0;
     for y in 0..16 {
         for x in 0..16 {
-            for index in 0..4 {
+            for index in 0..samples {
                 let pixel = UVec2::new(x, y);
                 sampler.start_pixel_sample(pixel, index);
                 let ray = scene
                     .camera
                     .generate_ray(pixel.as_vec2() + Vec2::splat(0.5), Vec2::ZERO);
                 integrator.radiance(&scene.world, ray, &mut sampler, &mut counters);
-                let draws = &sampler.draws;
-                assert!(
-                    draws.len() <= expected.len() && expected.starts_with(draws),
-                    "{name}: pixel {pixel}, sample {index} (seed 5) drew {draws:?}, \
-                     not a prefix of {expected:?}"
-                );
-                longest = longest.max(draws.len());
+                visit(pixel, index, &sampler.draws);
             }
         }
     }
-    longest
 }
 
 /// How many draws a path makes through vertex `depth` if it goes on past it.
@@ -174,27 +186,13 @@ fn direct_sample_counts_repeat_the_first_vertex_draws() {
             "the dimensions the integrator reports for {vertices} vertices"
         );
     }
-    let mut sampler = Recording {
-        inner: IndependentSampler::new(5, 4),
-        draws: Vec::new(),
-    };
-    let mut counters = RayCounters::default();
     let mut hits = 0;
-    for y in 0..16 {
-        for x in 0..16 {
-            let pixel = UVec2::new(x, y);
-            sampler.start_pixel_sample(pixel, 0);
-            let ray = scene
-                .camera
-                .generate_ray(pixel.as_vec2() + Vec2::splat(0.5), Vec2::ZERO);
-            integrator.radiance(&scene.world, ray, &mut sampler, &mut counters);
-            let draws = &sampler.draws;
-            assert!(
-                draws.is_empty() || *draws == expected,
-                "pixel {pixel}, sample 0 (seed 5) drew {draws:?}, not {expected:?} or nothing"
-            );
-            hits += usize::from(!draws.is_empty());
-        }
-    }
+    each_path_draws(&scene, &integrator, 1, |pixel, index, draws| {
+        assert!(
+            draws.is_empty() || draws == expected,
+            "pixel {pixel}, sample {index} (seed 5) drew {draws:?}, not {expected:?} or nothing"
+        );
+        hits += usize::from(!draws.is_empty());
+    });
     assert!(hits > 0, "no camera ray hit the scene");
 }

@@ -243,13 +243,26 @@ impl Filter {
 
     /// The density (per pixel) with which [`Self::sample_axis`] draws `offset`.
     fn pdf_axis(&self, offset: f32, centre: f32, size: u32) -> f32 {
+        self.restricted_to_image(offset, centre, size, Self::pdf_1d, Self::cdf_1d)
+    }
+
+    /// `density(offset)` over its integral over the offsets that keep a film position inside an
+    /// image axis of `size` pixels (by `cumulative`, its running integral), zero outside them.
+    fn restricted_to_image(
+        &self,
+        offset: f32,
+        centre: f32,
+        size: u32,
+        density: fn(&Self, f32) -> f32,
+        cumulative: fn(&Self, f32) -> f32,
+    ) -> f32 {
         let (lo, hi) = Self::inside(centre, size);
         if !(offset >= lo && offset < hi) {
             return 0.0;
         }
-        let mass = self.cdf_1d(hi) - self.cdf_1d(lo);
+        let mass = cumulative(self, hi) - cumulative(self, lo);
         if mass > 0.0 {
-            self.pdf_1d(offset) / mass
+            density(self, offset) / mass
         } else {
             0.0
         }
@@ -263,16 +276,13 @@ impl Filter {
         if !self.has_negative_lobes() {
             return self.pdf_axis(offset, centre, size);
         }
-        let (lo, hi) = Self::inside(centre, size);
-        if !(offset >= lo && offset < hi) {
-            return 0.0;
-        }
-        let mass = self.signed_cdf_1d(hi) - self.signed_cdf_1d(lo);
-        if mass > 0.0 {
-            self.signed_pdf_1d(offset) / mass
-        } else {
-            0.0
-        }
+        self.restricted_to_image(
+            offset,
+            centre,
+            size,
+            Self::signed_pdf_1d,
+            Self::signed_cdf_1d,
+        )
     }
 
     /// The weight (per square pixel) with which the film position `film` counts towards `pixel`

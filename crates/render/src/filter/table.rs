@@ -104,35 +104,30 @@ impl FilterTable {
     /// The CDF of [`Self::pdf`] at offset `x`: exactly 0 at and below `-radius`, exactly 1 at
     /// and above `radius`.
     pub(super) fn cdf(&self, x: f32) -> f32 {
-        let h = self.spacing();
-        let position = (x + self.radius) / h;
-        if position.is_nan() || position <= 0.0 {
-            return 0.0;
-        }
-        if position >= self.segments as f32 {
-            return 1.0;
-        }
-        let i = (position as usize).min(self.segments - 1);
-        let s = position - i as f32;
-        let (f0, f1) = (self.values[i].abs(), self.values[i + 1].abs());
-        let within = h * s * (f0 + 0.5 * (f1 - f0) * s) / self.total;
-        (self.cdf[i] + within).min(1.0)
+        self.running_integral(x, &self.cdf, f32::abs).min(1.0)
     }
 
     /// The integral of [`Self::signed_pdf`] from `-radius` to `x`.
     pub(super) fn signed_cdf(&self, x: f32) -> f32 {
+        self.running_integral(x, &self.signed_cdf, |v| v)
+    }
+
+    /// The integral from `-radius` to `x` of the interpolant of `node(f₁)` divided by `total`,
+    /// from `at_nodes`, its values at the nodes: 0 at and below `-radius`, the last node's value
+    /// at and above `radius`.
+    fn running_integral(&self, x: f32, at_nodes: &[f32], node: impl Fn(f32) -> f32) -> f32 {
         let h = self.spacing();
         let position = (x + self.radius) / h;
         if position.is_nan() || position <= 0.0 {
             return 0.0;
         }
         if position >= self.segments as f32 {
-            return self.signed_cdf[self.segments];
+            return at_nodes[self.segments];
         }
         let i = (position as usize).min(self.segments - 1);
         let s = position - i as f32;
-        let (f0, f1) = (self.values[i], self.values[i + 1]);
-        self.signed_cdf[i] + h * s * (f0 + 0.5 * (f1 - f0) * s) / self.total
+        let (f0, f1) = (node(self.values[i]), node(self.values[i + 1]));
+        at_nodes[i] + h * s * (f0 + 0.5 * (f1 - f0) * s) / self.total
     }
 
     /// Maps `u ∈ [0, 1)` to an offset in `[-radius, radius]` (pixels) with density
