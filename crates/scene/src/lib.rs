@@ -41,6 +41,7 @@
 
 mod build;
 mod camera;
+mod cie_tables;
 mod desc;
 mod error;
 mod features;
@@ -51,6 +52,7 @@ mod mesh;
 mod params;
 mod plugins;
 mod rebase;
+mod spectrum;
 mod xml;
 
 use std::path::Path;

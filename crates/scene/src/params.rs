@@ -4,6 +4,7 @@
 use glam::{DMat4, DVec3};
 
 use crate::error::{Loc, Result};
+use crate::spectrum::{SpectrumRole, spectrum_to_srgb, xyz_to_srgb};
 use crate::xml::tree::{ObjectNode, Prop, Value};
 
 /// How a colour parameter is interpreted (Mitsuba's texture kinds in its RGB variants).
@@ -17,14 +18,6 @@ pub(crate) enum ColorKind {
     /// `value × xyz_to_srgb(1, 1, 1)` as in Mitsuba's RGB variants.
     Emission,
 }
-
-/// sRGB of the equal-energy spectrum with unit XYZ, Mitsuba's conversion of a uniform emission
-/// spectrum in its RGB variants (`xyz_to_srgb(Color3f(1))`).
-const UNIFORM_EMISSION_RGB: DVec3 = DVec3::new(
-    3.240479 - 1.537150 - 0.498535,
-    -0.969256 + 1.875991 + 0.041556,
-    0.055648 - 0.204043 + 1.057311,
-);
 
 /// The properties of one plugin object being interpreted.
 pub(crate) struct Params<'a> {
@@ -165,8 +158,9 @@ impl<'a> Params<'a> {
         }
     }
 
-    /// A colour given as `<rgb>`, `<float>`/`<integer>` (grey) or a uniform `<spectrum>`,
-    /// validated for its `kind`; `default` is a grey level used when the parameter is absent.
+    /// A colour given as `<rgb>`, `<float>`/`<integer>` (grey) or a `<spectrum>` (uniform, or
+    /// wavelength–value pairs integrated to sRGB as Mitsuba's RGB variants do), validated for its
+    /// `kind`; `default` is a grey level used when the parameter is absent.
     pub fn color(&mut self, name: &'static str, kind: ColorKind, default: f64) -> Result<DVec3> {
         let Some(prop) = self.find(name) else {
             return Ok(DVec3::splat(default));
@@ -175,8 +169,16 @@ impl<'a> Params<'a> {
             Value::Rgb(v) => v,
             Value::Float(v) => DVec3::splat(v),
             Value::Integer(v) => DVec3::splat(v as f64),
-            Value::Spectrum(v) if kind == ColorKind::Emission => v * UNIFORM_EMISSION_RGB,
+            Value::Spectrum(v) if kind == ColorKind::Emission => v * xyz_to_srgb(DVec3::ONE),
             Value::Spectrum(v) => DVec3::splat(v),
+            Value::SpectrumPairs(ref pairs) => spectrum_to_srgb(
+                pairs,
+                match kind {
+                    ColorKind::Reflectance => SpectrumRole::Reflectance,
+                    ColorKind::Unbounded => SpectrumRole::Unbounded,
+                    ColorKind::Emission => SpectrumRole::Emission,
+                },
+            ),
             _ => return Err(wrong_type(prop, "rgb")),
         };
         if rgb.min_element() < 0.0 {

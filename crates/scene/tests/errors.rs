@@ -103,15 +103,35 @@ fn unsupported_things() {
         "material",
         "supported: none, Ag, Al, Au, Cr, Cu",
     );
-    expect(
-        "spectrum_pairs.xml",
-        &wrap(
-            "<bsdf type=\"diffuse\">\n<spectrum name=\"reflectance\" value=\"400:0.1, 700:0.5\"/>\n</bsdf>",
+    for (name, value, message) in [
+        ("spectrum_one_pair.xml", "400:0.1", "at least two"),
+        (
+            "spectrum_order.xml",
+            "500:0.1, 400:0.5",
+            "must increase: 400 nm follows 500 nm",
         ),
-        5,
-        "<spectrum name=\"reflectance\"",
-        "uniform spectra",
-    );
+        (
+            "spectrum_mixed.xml",
+            "400:0.1, 0.5",
+            "\"0.5\" is not a wavelength:value pair",
+        ),
+        ("spectrum_nan.xml", "400:nan, 500:1", "not a finite number"),
+        (
+            "spectrum_list.xml",
+            "0.1 0.5",
+            "one value or wavelength:value pairs",
+        ),
+    ] {
+        expect(
+            name,
+            &wrap(&format!(
+                "<bsdf type=\"diffuse\">\n<spectrum name=\"reflectance\" value=\"{value}\"/>\n</bsdf>"
+            )),
+            5,
+            "<spectrum name=\"reflectance\"",
+            message,
+        );
+    }
     expect(
         "top_area.xml",
         &wrap("<emitter type=\"area\"/>"),

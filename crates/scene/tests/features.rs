@@ -199,6 +199,53 @@ fn filters_with_negative_lobes() {
     );
 }
 
+/// Spectra as wavelength:value pairs become sRGB as in Mitsuba's RGB variants: a flat reflectance
+/// is grey, an emitter's spectrum is not weighted by D65, a spectral reflectance that rises
+/// towards the red is reddish.
+#[test]
+fn spectra_given_by_wavelengths() {
+    let desc = ok(
+        "spectra.xml",
+        "<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\"/>
+<shape type=\"sphere\"><bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"360:0.5, 830:0.5\"/></bsdf></shape>
+<shape type=\"sphere\"><bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"400:0.1 550:0.3 700:0.9\"/></bsdf>
+  <emitter type=\"area\"><spectrum name=\"radiance\" value=\"360:2, 830:2\"/></emitter></shape>
+</scene>",
+    );
+    let reflectance = |i: usize| match &desc.bsdfs[desc.shapes[i].bsdf] {
+        BsdfDesc::Diffuse { reflectance } => *reflectance,
+        other => panic!("not diffuse: {other:?}"),
+    };
+    let grey = reflectance(0);
+    assert!(
+        (grey - Vec3::splat(0.5)).abs().max_element() < 1e-3,
+        "{grey}"
+    );
+    let reddish = reflectance(1);
+    assert!(reddish.x > reddish.y && reddish.y > reddish.z, "{reddish}");
+    let radiance = desc.shapes[1]
+        .emitter
+        .as_ref()
+        .expect("an emitter")
+        .radiance;
+    // The equal-energy spectrum, as a uniform <spectrum value="2"/> emission gives it.
+    let uniform = ok(
+        "uniform.xml",
+        "<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\"/>
+<shape type=\"sphere\"><emitter type=\"area\"><spectrum name=\"radiance\" value=\"2\"/></emitter></shape>
+</scene>",
+    );
+    let expected = uniform.shapes[0]
+        .emitter
+        .as_ref()
+        .expect("an emitter")
+        .radiance;
+    assert!(
+        ((radiance - expected).abs() / expected).max_element() < 5e-3,
+        "{radiance} against {expected}"
+    );
+}
+
 #[test]
 fn thin_lens_and_focal_length() {
     let desc = ok(

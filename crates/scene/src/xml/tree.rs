@@ -12,7 +12,9 @@ use glam::{DMat4, DVec3};
 
 use super::attrs::Attrs;
 use super::transform::{TRANSFORM_OPS, operation_matrix};
-use super::values::{parse_boolean, parse_float, parse_integer, parse_vec3_or_scalar, tokenize};
+use super::values::{
+    parse_boolean, parse_float, parse_integer, parse_spectrum_pairs, parse_vec3_or_scalar, tokenize,
+};
 use crate::error::{LoadError, Loc, Result};
 use crate::limits::{MAX_SCENE_FILE_BYTES, read_at_most};
 
@@ -70,6 +72,9 @@ pub(crate) enum Value {
     Rgb(DVec3),
     /// A uniform spectrum (`<spectrum value="v"/>`).
     Spectrum(f64),
+    /// A spectrum as wavelength (nm) and value pairs, `<spectrum value="400:0.1, 700:0.8"/>`:
+    /// at least two, wavelengths increasing.
+    SpectrumPairs(Vec<(f64, f64)>),
     Transform(DMat4),
 }
 
@@ -84,7 +89,7 @@ impl Value {
             Value::Point(_) => "point",
             Value::Vector(_) => "vector",
             Value::Rgb(_) => "rgb",
-            Value::Spectrum(_) => "spectrum",
+            Value::Spectrum(_) | Value::SpectrumPairs(_) => "spectrum",
             Value::Transform(_) => "transform",
         }
     }
@@ -513,18 +518,21 @@ impl Builder {
                 attrs.check(&["name", "value", "filename"], &["name"], &loc)?;
                 if attrs.get("filename").is_some() {
                     return Err(loc.error(
-                        "spectra from files are not supported (use <rgb> or a single-value <spectrum>)",
+                        "spectra from files are not supported (use <rgb>, a single value or wavelength:value pairs)",
                     ));
                 }
                 let text = attrs
                     .get("value")
                     .ok_or_else(|| loc.error("missing required attribute \"value\""))?;
-                if text.contains(':') || tokenize(text).len() != 1 {
+                if text.contains(':') {
+                    Value::SpectrumPairs(parse_spectrum_pairs(text, &loc)?)
+                } else if tokenize(text).len() == 1 {
+                    Value::Spectrum(parse_float(text, &loc)?)
+                } else {
                     return Err(loc.error(
-                        "only uniform spectra (a single value) are supported; use <rgb> for colours",
+                        "a spectrum is one value or wavelength:value pairs (\"400:0.5, 700:0.8\")",
                     ));
                 }
-                Value::Spectrum(parse_float(text, &loc)?)
             }
         };
         Ok(Prop {

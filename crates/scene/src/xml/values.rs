@@ -57,6 +57,48 @@ pub(crate) fn parse_floats(text: &str, n: usize, loc: &Loc) -> Result<Vec<f64>> 
     tokens.iter().map(|t| parse_float(t, loc)).collect()
 }
 
+/// Most wavelength–value pairs a spectrum may list.
+const MAX_SPECTRUM_PAIRS: usize = 10_000;
+
+/// Parses a spectrum given as `wavelength:value` pairs separated by commas or whitespace
+/// (Mitsuba's `<spectrum value="400:0.5, 500:0.7"/>`): at least two, wavelengths positive and
+/// strictly increasing, values finite.
+pub(crate) fn parse_spectrum_pairs(text: &str, loc: &Loc) -> Result<Vec<(f64, f64)>> {
+    let tokens = tokenize(text);
+    if tokens.len() > MAX_SPECTRUM_PAIRS {
+        return Err(loc.error(format!(
+            "a spectrum may list at most {MAX_SPECTRUM_PAIRS} wavelength:value pairs, got {}",
+            tokens.len()
+        )));
+    }
+    let mut pairs: Vec<(f64, f64)> = Vec::with_capacity(tokens.len());
+    for token in tokens {
+        let Some((wavelength, value)) = token.split_once(':') else {
+            return Err(loc.error(format!(
+                "\"{token}\" is not a wavelength:value pair (e.g. \"400:0.5\")"
+            )));
+        };
+        let (wavelength, value) = (parse_float(wavelength, loc)?, parse_float(value, loc)?);
+        if wavelength <= 0.0 {
+            return Err(loc.error(format!("wavelength {wavelength} nm is not positive")));
+        }
+        if let Some(&(previous, _)) = pairs.last()
+            && wavelength <= previous
+        {
+            return Err(loc.error(format!(
+                "wavelengths must increase: {wavelength} nm follows {previous} nm"
+            )));
+        }
+        pairs.push((wavelength, value));
+    }
+    if pairs.len() < 2 {
+        return Err(
+            loc.error("a spectrum given by wavelengths needs at least two wavelength:value pairs")
+        );
+    }
+    Ok(pairs)
+}
+
 /// Parses one number (broadcast to all three components) or three numbers.
 pub(crate) fn parse_vec3_or_scalar(text: &str, loc: &Loc) -> Result<DVec3> {
     let tokens = tokenize(text);
