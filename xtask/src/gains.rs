@@ -228,8 +228,10 @@ fn veach_regions(subject: &Subject) -> Vec<Option<(usize, usize)>> {
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| {
             let film = glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-            let ray = scene.camera.generate_ray(film, glam::Vec2::ZERO);
-            let surface = scene.world.intersect(&ray, &mut counters)?;
+            let camera = scene.camera.generate_ray(film, glam::Vec2::ZERO);
+            let surface = scene
+                .world
+                .intersect_within(&camera.ray, camera.t_max, &mut counters)?;
             let plate = plates.iter().position(|&s| s == surface.hit.shape)?;
             Some((plate, (4 * x / width) as usize))
         })

@@ -2,6 +2,7 @@
 //! configuration is tested against) and the path tracer with every variance-reduction technique
 //! as a switch.
 
+mod camera_ray;
 mod counters;
 mod delta_lights;
 mod light_choice;
@@ -14,6 +15,7 @@ mod settings;
 mod uniform_direction;
 mod world;
 
+pub use camera_ray::CameraRay;
 pub use counters::{RayCounters, RayTally};
 pub use light_tracer::{CameraConnection, LightTracer};
 pub use path::PathIntegrator;

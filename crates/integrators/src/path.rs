@@ -19,7 +19,7 @@ use crate::optional_draw::next_1d_if;
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{DirectSamples, LightSelectionMode, Mis, PathSettings};
 use crate::uniform_direction::{sample_uniform_direction, uniform_direction_pdf};
-use crate::{RayTally, SurfaceHit, World};
+use crate::{CameraRay, RayTally, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
@@ -126,7 +126,7 @@ impl PathIntegrator {
     pub fn radiance(
         &self,
         world: &World,
-        camera_ray: Ray,
+        camera_ray: CameraRay,
         sampler: &mut impl Sampler,
         counters: &mut impl RayTally,
     ) -> Vec3 {
@@ -137,7 +137,7 @@ impl PathIntegrator {
         // Product of η² over the refractions so far: refraction scales radiance by 1/η², which
         // roulette must not mistake for absorption (pbrt-v4's `etaScale`, Mitsuba's `eta`).
         let mut eta_scale = 1.0_f32;
-        let mut ray = camera_ray;
+        let mut ray = camera_ray.ray;
         let mut previous = PreviousVertex {
             p: ray.origin,
             pdf_dir: 0.0,
@@ -153,7 +153,9 @@ impl PathIntegrator {
         for depth in 1..=max_depth {
             let hidden = depth == 1 && settings.hide_emitters;
             let found = if hidden {
-                world.intersect_past_emitters(&ray, counters)
+                world.intersect_past_emitters(&camera_ray, counters)
+            } else if depth == 1 {
+                world.intersect_within(&ray, camera_ray.t_max, counters)
             } else {
                 world.intersect(&ray, counters)
             };

@@ -9,7 +9,7 @@
 use crate::delta_lights::delta_lights;
 use crate::settings::DirectSamples;
 use crate::uniform_direction::sample_uniform_direction;
-use crate::{RayTally, World};
+use crate::{CameraRay, RayTally, World};
 use geometry::Ray;
 use glam::Vec3;
 use sampling::Sampler;
@@ -40,7 +40,7 @@ pub struct ReferenceSettings {
 /// (direction), whether or not they are used, so the dimension order is fixed.
 pub fn radiance(
     world: &World,
-    camera_ray: Ray,
+    camera_ray: CameraRay,
     sampler: &mut impl Sampler,
     settings: &ReferenceSettings,
     counters: &mut impl RayTally,
@@ -48,14 +48,16 @@ pub fn radiance(
     let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
     let mut radiance = Vec3::ZERO;
     let mut throughput = Vec3::ONE;
-    let mut ray = camera_ray;
+    let mut ray = camera_ray.ray;
     // Whether every bounce so far was by a delta lobe: emission found next is seen by the shading
     // normal, as the path tracer sees what neither light sampling nor light tracing reaches.
     let mut seen_through_delta = true;
     for depth in 1..=max_depth {
         let hidden = depth == 1 && settings.hide_emitters;
         let found = if hidden {
-            world.intersect_past_emitters(&ray, counters)
+            world.intersect_past_emitters(&camera_ray, counters)
+        } else if depth == 1 {
+            world.intersect_within(&ray, camera_ray.t_max, counters)
         } else {
             world.intersect(&ray, counters)
         };

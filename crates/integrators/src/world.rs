@@ -1,7 +1,7 @@
 //! Everything light transport needs to know about a scene: geometry, materials and emitters,
 //! in flat arrays indexed by shape.
 
-use crate::RayTally;
+use crate::{CameraRay, RayTally};
 use geometry::{Accel, Hit, Ray};
 use glam::Vec3;
 use lights::Light;
@@ -126,8 +126,20 @@ impl World {
     /// The closest surface along `ray`, told to `tally` as one closest-hit ray.
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray, tally: &mut impl RayTally) -> Option<SurfaceHit<'_>> {
+        self.intersect_within(ray, f32::INFINITY, tally)
+    }
+
+    /// The closest surface along `ray` nearer than `t_max` (world units), told to `tally` as one
+    /// closest-hit ray.
+    #[inline(always)]
+    pub fn intersect_within(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        tally: &mut impl RayTally,
+    ) -> Option<SurfaceHit<'_>> {
         tally.closest_ray(ray);
-        let hit = self.accel.intersect(ray, f32::INFINITY)?;
+        let hit = self.accel.intersect(ray, t_max)?;
         let shape = hit.shape as usize;
         let frame = Frame::from_normal(hit.ns);
         let (bsdf, frame) = match &self.materials[self.shape_material[shape] as usize] {
@@ -145,23 +157,26 @@ impl World {
         })
     }
 
-    /// The first surface along the camera ray `ray` that does not emit, passing through every
+    /// The first surface along `camera_ray` (within its far clip) that does not emit, passing through every
     /// area emitter in front of it (each one told to `tally` as one more closest-hit ray): how
     /// Mitsuba 3's `hide_emitters` hides emitters from the camera, so that what lies behind a
     /// hidden light shows (Mitsuba 3's `skip_area_emitters`).
     #[inline]
     pub fn intersect_past_emitters(
         &self,
-        ray: &Ray,
+        camera_ray: &CameraRay,
         tally: &mut impl RayTally,
     ) -> Option<SurfaceHit<'_>> {
-        let mut ray = *ray;
+        let mut ray = camera_ray.ray;
+        let mut t_max = camera_ray.t_max;
         loop {
-            let surface = self.intersect(&ray, tally)?;
+            let surface = self.intersect_within(&ray, t_max, tally)?;
             if surface.light.is_none() {
                 return Some(surface);
             }
+            // Mitsuba's rays past an emitter are not clipped again.
             ray = Ray::spawn(surface.hit.p, surface.hit.ng, ray.dir);
+            t_max = f32::INFINITY;
         }
     }
 

@@ -590,7 +590,7 @@ fn a_point_light_1e_4_above_a_plane_lights_it_as_the_inverse_square_law_says() {
     };
     let plane_y = light.y - h;
     let radiance = |film: Vec2| {
-        let ray = scene.camera.generate_ray(film, Vec2::ZERO);
+        let ray = scene.camera.generate_ray(film, Vec2::ZERO).ray;
         let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
         let p = o + d * ((plane_y - o.y) / d.y);
         let r = (p - light).length();

@@ -1,7 +1,7 @@
 //! Turns a [`SceneDesc`] into the runtime objects that render it: the [`World`] and the
 //! [`Camera`].
 
-use crate::camera::{Camera, ThinLens};
+use crate::camera::Camera;
 use crate::features::SceneFeatures;
 use crate::{
     BsdfDesc, EmitterDesc, Geometry, LoadError, MicrofacetDistribution, SceneDesc, ShapeDesc,
@@ -98,18 +98,7 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
 
 /// The camera for the description's sensor and film.
 fn camera(desc: &SceneDesc) -> Camera {
-    let (width, height) = (desc.film.width, desc.film.height);
-    Camera::new(
-        desc.sensor.to_world,
-        desc.sensor.x_fov_deg(width, height),
-        width,
-        height,
-        desc.sensor.near_clip,
-        desc.sensor.lens.map(|l| ThinLens {
-            aperture_radius: l.aperture_radius,
-            focus_distance: l.focus_distance,
-        }),
-    )
+    Camera::new(&desc.sensor, desc.film.width, desc.film.height)
 }
 
 fn runtime_shape(shape: &ShapeDesc) -> Shape {

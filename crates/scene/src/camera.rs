@@ -2,7 +2,9 @@
 
 use geometry::Ray;
 use glam::{Mat4, Vec2, Vec3};
-use integrators::CameraConnection;
+use integrators::{CameraConnection, CameraRay};
+
+use crate::desc::SensorDesc;
 use sampling::warp::sample_concentric_disk;
 
 /// A thin lens: rays leave a disc of `aperture_radius` and converge on the plane at
@@ -25,29 +27,29 @@ pub struct Camera {
     tan_half_fov: Vec2,
     resolution: Vec2,
     near_clip: f32,
+    far_clip: f32,
+    /// The principal point's offset from the film's centre, in fractions of the film's size.
+    principal_point_offset: Vec2,
     lens: Option<ThinLens>,
 }
 
 impl Camera {
-    /// A camera placed by `to_world` (camera to world), with horizontal field of view
-    /// `fov_x_degrees` over an image of `width` × `height` pixels.
-    pub fn new(
-        to_world: Mat4,
-        fov_x_degrees: f32,
-        width: u32,
-        height: u32,
-        near_clip: f32,
-        lens: Option<ThinLens>,
-    ) -> Self {
+    /// The camera `sensor` describes, over an image of `width` × `height` pixels.
+    pub fn new(sensor: &SensorDesc, width: u32, height: u32) -> Self {
         let aspect = width as f32 / height as f32;
-        let tan_x = (0.5 * fov_x_degrees.to_radians()).tan();
+        let tan_x = (0.5 * sensor.x_fov_deg(width, height).to_radians()).tan();
         Self {
-            to_world,
-            to_camera: to_world.inverse(),
+            to_world: sensor.to_world,
+            to_camera: sensor.to_world.inverse(),
             tan_half_fov: Vec2::new(tan_x, tan_x / aspect),
             resolution: Vec2::new(width as f32, height as f32),
-            near_clip,
-            lens,
+            near_clip: sensor.near_clip,
+            far_clip: sensor.far_clip,
+            principal_point_offset: Vec2::from_array(sensor.principal_point_offset),
+            lens: sensor.lens.map(|l| ThinLens {
+                aperture_radius: l.aperture_radius,
+                focus_distance: l.focus_distance,
+            }),
         }
     }
 
@@ -59,10 +61,11 @@ impl Camera {
 
     /// The ray through the continuous film position `film` (pixels; (0, 0) is the top-left
     /// corner of the image, pixel centres at half-integers), using `u_lens` ∈ [0, 1)² on the
-    /// aperture when the camera has a lens. The ray starts on the near clipping plane.
+    /// aperture when the camera has a lens. The ray starts on the near clipping plane and ends
+    /// on the far one.
     #[inline]
-    pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> Ray {
-        let ndc = film / self.resolution * 2.0 - Vec2::ONE;
+    pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> CameraRay {
+        let ndc = (film / self.resolution + self.principal_point_offset) * 2.0 - Vec2::ONE;
         // Image right is camera -x and image down is camera -y.
         let on_plane = Vec3::new(
             -ndc.x * self.tan_half_fov.x,
@@ -81,14 +84,19 @@ impl Camera {
         // Neither direction is unit length yet: `Ray::new` normalises the world one.
         let near = origin_local + dir_local * (self.near_clip / dir_local.z);
         let origin = self.to_world.transform_point3(near);
-        Ray::new(origin, self.to_world.transform_vector3(dir_local))
+        // From the near plane to the far one along the (rigidly transformed) direction.
+        let t_max = (self.far_clip - self.near_clip) * dir_local.length() / dir_local.z;
+        CameraRay {
+            ray: Ray::new(origin, self.to_world.transform_vector3(dir_local)),
+            t_max,
+        }
     }
 
     /// Where the world point `p` appears to this camera through the point of its aperture that
     /// `u_lens` ∈ [0, 1)² picks (as [`Camera::generate_ray`] does; ignored for a pinhole): the
     /// film position of the camera rays that pass through that aperture point and `p`, the end
     /// of a ray to the camera, and the camera's importance there (see [`CameraConnection`]).
-    /// `None` for points behind the near plane or more than `margin` pixels off the film (a
+    /// `None` for points outside the clipping planes or more than `margin` pixels off the film (a
     /// reconstruction filter's radius: camera samples of the edge pixels reach that far).
     /// Assumes a rigid (or uniformly scaled) camera transform, as `lookat` gives.
     ///
@@ -98,7 +106,7 @@ impl Camera {
     /// pbrt-v4's `PerspectiveCamera::SampleWi`, whose lens area cancels out.
     pub fn connect(&self, p: Vec3, margin: f32, u_lens: Vec2) -> Option<CameraConnection> {
         let local = self.to_camera.transform_point3(p);
-        if !(local.z > self.near_clip && local.is_finite()) {
+        if !(local.z > self.near_clip && local.z <= self.far_clip && local.is_finite()) {
             return None;
         }
         // The aperture point, the direction from it to `p`, the pinhole ray's point on the plane
@@ -121,7 +129,7 @@ impl Camera {
             -on_plane.x / self.tan_half_fov.x,
             -on_plane.y / self.tan_half_fov.y,
         );
-        let film = (ndc + Vec2::ONE) * 0.5 * self.resolution;
+        let film = ((ndc + Vec2::ONE) * 0.5 - self.principal_point_offset) * self.resolution;
         let margin = Vec2::splat(margin);
         if !(film.cmpge(-margin).all() && film.cmplt(self.resolution + margin).all()) {
             return None;
@@ -136,5 +144,93 @@ impl Camera {
             target: self.to_world.transform_point3(near),
             importance,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::desc::FovAxis;
+
+    /// A camera at (1, 2, 3) looking down world −z, 40° horizontal field of view, clipped at 0.5
+    /// and 20, with the given principal point offset, on a 64 × 48 film.
+    fn camera(offset: [f32; 2]) -> Camera {
+        let sensor = SensorDesc {
+            // Mitsuba's lookat from (1, 2, 3) towards −z with +y up: local +x is world −x.
+            to_world: Mat4::from_cols(
+                glam::Vec4::NEG_X,
+                glam::Vec4::Y,
+                glam::Vec4::NEG_Z,
+                glam::Vec4::new(1.0, 2.0, 3.0, 1.0),
+            ),
+            fov_deg: 40.0,
+            fov_axis: FovAxis::X,
+            near_clip: 0.5,
+            far_clip: 20.0,
+            lens: None,
+            principal_point_offset: offset,
+        };
+        Camera::new(&sensor, 64, 48)
+    }
+
+    #[test]
+    fn an_offset_principal_point_shifts_the_film() {
+        let (centred, shifted) = (camera([0.0, 0.0]), camera([0.25, -0.1]));
+        for film in [
+            Vec2::new(10.5, 3.25),
+            Vec2::new(32.0, 24.0),
+            Vec2::new(0.0, 47.9),
+        ] {
+            let expected =
+                centred.generate_ray(film + Vec2::new(0.25 * 64.0, -0.1 * 48.0), Vec2::ZERO);
+            let ray = shifted.generate_ray(film, Vec2::ZERO);
+            assert!(
+                ray.ray.dir.abs_diff_eq(expected.ray.dir, 1e-6)
+                    && ray.ray.origin.abs_diff_eq(expected.ray.origin, 1e-5),
+                "film {film}: {ray:?} against {expected:?}"
+            );
+            // The light tracer's connection finds the same film position again.
+            let p = ray.ray.at(7.0);
+            let connection = shifted.connect(p, 0.0, Vec2::ZERO).expect("p is in view");
+            assert!(
+                connection.film.abs_diff_eq(film, 1e-3),
+                "{} against {film}",
+                connection.film
+            );
+        }
+    }
+
+    #[test]
+    fn camera_rays_end_on_the_far_clipping_plane() {
+        let camera = camera([0.1, 0.0]);
+        for film in [
+            Vec2::new(0.5, 0.5),
+            Vec2::new(32.0, 24.0),
+            Vec2::new(63.5, 40.0),
+        ] {
+            let ray = camera.generate_ray(film, Vec2::ZERO);
+            // The camera looks down world −z from z = 3: local depth is 3 − z.
+            let depth = |t: f32| 3.0 - ray.ray.at(t).z;
+            assert!(
+                (depth(0.0) - 0.5).abs() < 1e-5,
+                "film {film}: starts at depth {}",
+                depth(0.0)
+            );
+            assert!(
+                (depth(ray.t_max) - 20.0).abs() < 1e-4,
+                "film {film}: ends at depth {}",
+                depth(ray.t_max)
+            );
+            assert!(
+                camera
+                    .connect(ray.ray.at(ray.t_max * 0.99), 0.0, Vec2::ZERO)
+                    .is_some()
+            );
+            assert!(
+                camera
+                    .connect(ray.ray.at(ray.t_max * 1.01), 0.0, Vec2::ZERO)
+                    .is_none()
+            );
+        }
     }
 }

@@ -146,6 +146,14 @@ fn unsupported_things() {
         "<rfilter type=\"bspline\">",
         "supported: box, tent, gaussian, mitchell, catmullrom, lanczos",
     );
+    // Mitsuba's thinlens has no principal point offset (its perspective sensor does).
+    expect(
+        "thinlens_offset.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"thinlens\">\n<float name=\"aperture_radius\" value=\"0.1\"/>\n<float name=\"principal_point_offset_x\" value=\"0.1\"/>\n</sensor>\n</scene>",
+        5,
+        "<float name=\"principal_point_offset_x\"",
+        "unsupported parameter",
+    );
     expect(
         "lanczos_lobes.xml",
         "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n<rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"0\"/></rfilter>\n</film>\n</sensor>\n</scene>",

@@ -34,6 +34,7 @@ fn mitsuba_defaults() {
     assert!((desc.sensor.x_fov_deg(768, 576) - 38.18484).abs() < 1e-3);
     assert_eq!(desc.sensor.near_clip, 0.01);
     assert_eq!(desc.sensor.far_clip, 1e4);
+    assert_eq!(desc.sensor.principal_point_offset, [0.0, 0.0]);
     assert_eq!(desc.sensor.to_world, glam::Mat4::IDENTITY);
     assert!(desc.sensor.lens.is_none());
     assert_eq!((desc.film.width, desc.film.height), (768, 576));
@@ -244,6 +245,17 @@ fn spectra_given_by_wavelengths() {
         ((radiance - expected).abs() / expected).max_element() < 5e-3,
         "{radiance} against {expected}"
     );
+}
+
+#[test]
+fn principal_point_offset() {
+    let desc = ok(
+        "offset.xml",
+        "<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\">\
+         <float name=\"principal_point_offset_x\" value=\"0.2\"/>\
+         <float name=\"principal_point_offset_y\" value=\"-0.05\"/></sensor></scene>",
+    );
+    assert_eq!(desc.sensor.principal_point_offset, [0.2, -0.05]);
 }
 
 #[test]

@@ -77,6 +77,11 @@ pub struct SensorDesc {
     pub far_clip: f32,
     /// The thin lens, `None` for a pinhole camera.
     pub lens: Option<ThinLensDesc>,
+    /// Where the principal point lies relative to the film's centre, as fractions of the film's
+    /// width and height (`perspective`'s `principal_point_offset_x` and `_y`, default 0): a
+    /// film position `(u, v)` (fractions, from the top left) sees what the centred camera sees at
+    /// `(u + x, v + y)`.
+    pub principal_point_offset: [f32; 2],
 }
 
 impl SensorDesc {

@@ -75,6 +75,15 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
             .loc_of("focus_distance")
             .error("focus_distance must be positive"));
     }
+    // Mitsuba's perspective sensor takes a principal point offset; its thinlens does not.
+    let principal_point_offset = if thin_lens {
+        [0.0, 0.0]
+    } else {
+        [
+            finite(&mut params, "principal_point_offset_x", 0.0)?,
+            finite(&mut params, "principal_point_offset_y", 0.0)?,
+        ]
+    };
     let lens = if thin_lens {
         let aperture_radius = params
             .float("aperture_radius")?
@@ -100,6 +109,7 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
             near_clip: near_clip as f32,
             far_clip: far_clip as f32,
             lens,
+            principal_point_offset,
         },
         film: match film {
             Some(film) => film,
