@@ -81,9 +81,10 @@ impl LightTracer {
                 )
             })
             .collect();
+        // Chosen by power times selection weight, as light sampling chooses them.
         let powers: Vec<f32> = lights
             .iter()
-            .map(|&i| world.lights()[i as usize].power())
+            .map(|&i| world.lights()[i as usize].power() * world.light_weights()[i as usize])
             .collect();
         let selection = CdfTable::new(&powers).ok()?;
         Some(Self {

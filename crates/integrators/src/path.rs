@@ -85,7 +85,7 @@ impl PathIntegrator {
         };
         Self {
             settings,
-            selector: LightSelector::new(world.lights(), selection),
+            selector: LightSelector::new(world.lights(), world.light_weights(), selection),
             draws_light_choice: world.lights().len() > 1,
             draws_lobe_choice: world.has_lobe_choice(),
         }

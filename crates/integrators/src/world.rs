@@ -19,6 +19,8 @@ pub struct World {
     shape_material: Vec<MaterialId>,
     shape_light: Vec<Option<u32>>,
     lights: Vec<Light>,
+    /// Each light's selection weight (Mitsuba's `sampling_weight`), parallel to `lights`.
+    light_weights: Vec<f32>,
     environment: Option<u32>,
     delta_lights: Vec<u32>,
 }
@@ -40,14 +42,28 @@ pub struct SurfaceHit<'w> {
 
 impl World {
     /// Assembles a world. `shape_material[i]` and `shape_light[i]` belong to shape `i` of
-    /// `accel`; every index must be in range (checked; the error says which one is not).
+    /// `accel`, `light_weights[l]` (positive, finite selection weights) to `lights[l]`; every
+    /// index must be in range (checked; the error says which one is not).
     pub fn new(
         accel: Accel,
         materials: Vec<Bsdf>,
         shape_material: Vec<MaterialId>,
         shape_light: Vec<Option<u32>>,
         lights: Vec<Light>,
+        light_weights: Vec<f32>,
     ) -> Result<Self, String> {
+        if light_weights.len() != lights.len() {
+            return Err(format!(
+                "{} lights but {} selection weights",
+                lights.len(),
+                light_weights.len()
+            ));
+        }
+        if let Some(w) = light_weights.iter().find(|w| !(w.is_finite() && **w > 0.0)) {
+            return Err(format!(
+                "light selection weight {w} is not positive and finite"
+            ));
+        }
         let shape_count = accel.shapes().len();
         if shape_material.len() != shape_count || shape_light.len() != shape_count {
             return Err(format!(
@@ -87,6 +103,7 @@ impl World {
             shape_material,
             shape_light,
             lights,
+            light_weights,
             environment: environments.first().copied(),
             delta_lights,
         })
@@ -95,6 +112,12 @@ impl World {
     /// All lights, area lights included.
     pub fn lights(&self) -> &[Light] {
         &self.lights
+    }
+
+    /// Each light's selection weight (parallel to [`Self::lights`]): it multiplies the
+    /// probability with which light sampling chooses the light.
+    pub fn light_weights(&self) -> &[f32] {
+        &self.light_weights
     }
 
     /// Index into [`Self::lights`] of the environment emitter, if the scene has one.

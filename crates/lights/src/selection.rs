@@ -20,25 +20,45 @@ pub enum LightSelector {
         /// Number of lights.
         count: u32,
     },
-    /// Probability proportional to power, drawn from an alias table.
-    Power(AliasTable),
+    /// Probability proportional to a weight per light (power, selection weight or both), drawn
+    /// from an alias table.
+    Weighted(AliasTable),
 }
 
 impl LightSelector {
-    /// A selector over `lights`; falls back to uniform when no light has positive finite power.
-    /// `None` when there are no lights.
-    pub fn new(lights: &[Light], selection: LightSelection) -> Option<Self> {
+    /// A selector over `lights` with selection weights `weights` (parallel to `lights`,
+    /// positive; Mitsuba's `sampling_weight`): each light is chosen with probability
+    /// proportional to its weight (`Uniform`) or to its power times its weight (`Power`). Falls
+    /// back to the weights alone when no light has positive finite power, and to uniform when
+    /// they are all equal. `None` when there are no lights.
+    pub fn new(lights: &[Light], weights: &[f32], selection: LightSelection) -> Option<Self> {
+        debug_assert_eq!(lights.len(), weights.len());
         if lights.is_empty() {
             return None;
         }
-        let uniform = LightSelector::Uniform {
-            count: lights.len() as u32,
+        let by_weight = || {
+            let uniform = LightSelector::Uniform {
+                count: lights.len() as u32,
+            };
+            if weights.iter().all(|&w| w == weights[0]) {
+                uniform
+            } else {
+                AliasTable::new(weights)
+                    .ok()
+                    .map_or(uniform, LightSelector::Weighted)
+            }
         };
         Some(match selection {
-            LightSelection::Uniform => uniform,
+            LightSelection::Uniform => by_weight(),
             LightSelection::Power => {
-                let powers: Vec<f32> = lights.iter().map(Light::power).collect();
-                AliasTable::new(&powers).map_or(uniform, LightSelector::Power)
+                let powers: Vec<f32> = lights
+                    .iter()
+                    .zip(weights)
+                    .map(|(light, &weight)| light.power() * weight)
+                    .collect();
+                AliasTable::new(&powers)
+                    .ok()
+                    .map_or_else(by_weight, LightSelector::Weighted)
             }
         })
     }
@@ -51,7 +71,7 @@ impl LightSelector {
                 let index = ((u * *count as f32) as u32).min(count - 1);
                 (index as usize, 1.0 / *count as f32)
             }
-            LightSelector::Power(table) => table.sample(u),
+            LightSelector::Weighted(table) => table.sample(u),
         }
     }
 
@@ -60,7 +80,7 @@ impl LightSelector {
     pub fn pmf(&self, index: usize) -> f32 {
         match self {
             LightSelector::Uniform { count } => 1.0 / *count as f32,
-            LightSelector::Power(table) => table.pmf(index),
+            LightSelector::Weighted(table) => table.pmf(index),
         }
     }
 }

@@ -406,7 +406,8 @@ fn power_selection_matches_its_pmf_and_is_proportional_to_power() {
     assert_eq!(powers[4], 0.0, "the black sphere has no power");
     let total: f64 = powers.iter().sum();
     let expected: Vec<f64> = powers.iter().map(|p| p / total).collect();
-    let selector = LightSelector::new(&lights, LightSelection::Power).expect("lights exist");
+    let selector = LightSelector::new(&lights, &vec![1.0; lights.len()], LightSelection::Power)
+        .expect("lights exist");
     assert_selects("power selection", &selector, &expected, 7);
 }
 
@@ -414,6 +415,33 @@ fn power_selection_matches_its_pmf_and_is_proportional_to_power() {
 fn uniform_selection_matches_its_pmf() {
     let lights = lights_of_varying_power();
     let expected = vec![1.0 / lights.len() as f64; lights.len()];
-    let selector = LightSelector::new(&lights, LightSelection::Uniform).expect("lights exist");
+    let selector = LightSelector::new(&lights, &vec![1.0; lights.len()], LightSelection::Uniform)
+        .expect("lights exist");
     assert_selects("uniform selection", &selector, &expected, 8);
+}
+
+/// Selection weights (Mitsuba's `sampling_weight`) multiply the pmf: alone with uniform
+/// selection, times power with power selection.
+#[test]
+fn selection_weights_scale_the_pmf() {
+    let lights = lights_of_varying_power();
+    let weights: Vec<f32> = (0..lights.len()).map(|i| 1.0 + 2.0 * i as f32).collect();
+    let normalise = |values: Vec<f64>| {
+        let total: f64 = values.iter().sum();
+        values.into_iter().map(|v| v / total).collect::<Vec<f64>>()
+    };
+    let by_weight = normalise(weights.iter().map(|&w| f64::from(w)).collect());
+    let selector =
+        LightSelector::new(&lights, &weights, LightSelection::Uniform).expect("lights exist");
+    assert_selects("uniform selection, weighted", &selector, &by_weight, 9);
+    let by_power = normalise(
+        lights
+            .iter()
+            .zip(&weights)
+            .map(|(l, &w)| f64::from(l.power()) * f64::from(w))
+            .collect(),
+    );
+    let selector =
+        LightSelector::new(&lights, &weights, LightSelection::Power).expect("lights exist");
+    assert_selects("power selection, weighted", &selector, &by_power, 10);
 }

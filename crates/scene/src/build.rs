@@ -50,12 +50,14 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
     let mut shape_material = Vec::with_capacity(desc.shapes.len());
     let mut shape_light = Vec::with_capacity(desc.shapes.len());
     let mut lights = Vec::new();
+    let mut light_weights = Vec::new();
     for shape in &desc.shapes {
         if let Some(emitter) = shape.emitter
             && let Some(light) = area_light(shape, emitter.radiance)
         {
             shape_light.push(Some(lights.len() as u32));
             lights.push(light);
+            light_weights.push(emitter.sampling_weight);
         } else {
             shape_light.push(None);
         }
@@ -74,19 +76,28 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
             EmitterDesc::Point {
                 position,
                 intensity,
+                ..
             } => Light::Point(PointLight {
                 position,
                 intensity,
             }),
-            EmitterDesc::Constant { radiance } => Light::Environment(ConstantEnvironment {
+            EmitterDesc::Constant { radiance, .. } => Light::Environment(ConstantEnvironment {
                 radiance,
                 scene_radius,
             }),
         });
+        light_weights.push(emitter.sampling_weight());
     }
     let features = SceneFeatures::of(&materials, &lights);
-    let world = World::new(accel, materials, shape_material, shape_light, lights)
-        .map_err(|m| error("scene".to_string(), m))?;
+    let world = World::new(
+        accel,
+        materials,
+        shape_material,
+        shape_light,
+        lights,
+        light_weights,
+    )
+    .map_err(|m| error("scene".to_string(), m))?;
     let camera = camera(&desc);
     Ok(RenderScene {
         world,

@@ -253,7 +253,8 @@ fn render_settings() {
         desc.emitters[0],
         EmitterDesc::Point {
             position: Vec3::new(0.0, 1.5, 1.0),
-            intensity: Vec3::splat(2.0)
+            intensity: Vec3::splat(2.0),
+            sampling_weight: 1.0
         }
     );
 }

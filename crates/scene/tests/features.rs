@@ -318,11 +318,12 @@ fn emitters() {
         desc.emitters[0],
         EmitterDesc::Point {
             position: Vec3::new(1.0, 2.0, 3.0),
-            intensity: Vec3::ONE
+            intensity: Vec3::ONE,
+            sampling_weight: 1.0
         }
     );
     // A uniform emission spectrum is 2 · xyz_to_srgb(1, 1, 1) in Mitsuba's RGB variants.
-    let EmitterDesc::Constant { radiance } = desc.emitters[1] else {
+    let EmitterDesc::Constant { radiance, .. } = desc.emitters[1] else {
         panic!()
     };
     assert!(close(
@@ -333,14 +334,16 @@ fn emitters() {
     assert_eq!(
         desc.emitters[2],
         EmitterDesc::Constant {
-            radiance: Vec3::splat(2.0)
+            radiance: Vec3::splat(2.0),
+            sampling_weight: 1.0
         }
     );
     assert_eq!(
         desc.emitters[3],
         EmitterDesc::Point {
             position: Vec3::ZERO,
-            intensity: Vec3::ONE
+            intensity: Vec3::ONE,
+            sampling_weight: 1.0
         }
     );
     assert_eq!(desc.shapes[0].emitter.unwrap().radiance, Vec3::ONE);

@@ -80,6 +80,10 @@ impl BsdfDesc {
 pub struct AreaEmitterDesc {
     /// Emitted radiance, linear RGB, W/(m²·sr) per channel (default 1).
     pub radiance: Vec3,
+    /// How often light sampling chooses this emitter relative to the others (Mitsuba's
+    /// `sampling_weight`, positive, default 1): it multiplies the selection weight and changes
+    /// only the noise.
+    pub sampling_weight: f32,
 }
 
 /// A light that is not attached to a shape.
@@ -91,10 +95,28 @@ pub enum EmitterDesc {
         position: Vec3,
         /// Radiant intensity, linear RGB, W/sr per channel (default 1).
         intensity: Vec3,
+        /// Selection weight, as [`AreaEmitterDesc::sampling_weight`].
+        sampling_weight: f32,
     },
     /// `constant`: radiance arriving uniformly from every direction at infinity.
     Constant {
         /// Radiance, linear RGB, W/(m²·sr) per channel (default 1).
         radiance: Vec3,
+        /// Selection weight, as [`AreaEmitterDesc::sampling_weight`].
+        sampling_weight: f32,
     },
+}
+
+impl EmitterDesc {
+    /// The emitter's selection weight ([`AreaEmitterDesc::sampling_weight`]).
+    pub fn sampling_weight(&self) -> f32 {
+        match *self {
+            EmitterDesc::Point {
+                sampling_weight, ..
+            }
+            | EmitterDesc::Constant {
+                sampling_weight, ..
+            } => sampling_weight,
+        }
+    }
 }

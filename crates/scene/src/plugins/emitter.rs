@@ -27,9 +27,11 @@ pub(crate) fn area_emitter(node: &ObjectNode) -> Result<AreaEmitterDesc> {
             .error("an area emitter takes its placement from its shape; remove to_world"));
     }
     let radiance = params.color("radiance", ColorKind::Emission, 1.0)?;
+    let sampling_weight = sampling_weight(&mut params)?;
     params.finish()?;
     Ok(AreaEmitterDesc {
         radiance: radiance.as_vec3(),
+        sampling_weight,
     })
 }
 
@@ -56,12 +58,14 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
                 intensity: params
                     .color("intensity", ColorKind::Emission, 1.0)?
                     .as_vec3(),
+                sampling_weight: sampling_weight(&mut params)?,
             }
         }
         "constant" => EmitterDesc::Constant {
             radiance: params
                 .color("radiance", ColorKind::Emission, 1.0)?
                 .as_vec3(),
+            sampling_weight: sampling_weight(&mut params)?,
         },
         "area" => {
             return Err(node
@@ -83,4 +87,15 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
     };
     params.finish()?;
     Ok(emitter)
+}
+
+/// Mitsuba's `sampling_weight` of every emitter: positive and finite, default 1.
+fn sampling_weight(params: &mut Params) -> Result<f32> {
+    let weight = params.float_or("sampling_weight", 1.0)?;
+    if !(weight > 0.0 && (weight as f32).is_finite()) {
+        return Err(params.loc_of("sampling_weight").error(format!(
+            "\"sampling_weight\" must be positive and finite, got {weight}"
+        )));
+    }
+    Ok(weight as f32)
 }
