@@ -180,8 +180,9 @@ impl World {
         })
     }
 
-    /// The first surface along `camera_ray` (within its far clip) that does not emit, passing through every
-    /// area emitter in front of it (each one told to `tally` as one more closest-hit ray): how
+    /// The first surface along `camera_ray` (within its far clip) that does not emit, passing
+    /// through every area emitter in front of it (each one told to `tally` as one more closest-hit
+    /// ray): how
     /// Mitsuba 3's `hide_emitters` hides emitters from the camera, so that what lies behind a
     /// hidden light shows (Mitsuba 3's `skip_area_emitters`).
     #[inline]

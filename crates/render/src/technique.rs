@@ -144,13 +144,11 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
     }
     if let Transport::Path(settings) = &mut transport {
-        // `auto` traces caustics from the lights wherever that applies. A caustic path needs
-        // three vertices after the camera (diffuse, delta, light), so none at depth 2 or less.
+        // `auto` traces caustics from the lights wherever that applies.
         let auto_traces = args.integrator == IntegratorPreset::Auto;
         settings.light_tracing = (args.light_tracing || auto_traces)
-            && light_tracing_applies(features)
-            && !settings.hide_emitters
-            && settings.max_depth.is_none_or(|depth| depth >= 3);
+            && light_tracing_applies(features, settings.max_depth)
+            && !settings.hide_emitters;
     }
 
     let sampler = match args.sampler {
@@ -230,8 +228,12 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
 /// caustics and a light with a surface to trace from. Any camera (a thin lens's connections go
 /// through a sampled point of its aperture) and any reconstruction filter (a light path splats
 /// into every pixel whose camera samples can reach its film position, weighted by the filter).
-pub fn light_tracing_applies(features: &SceneFeatures) -> bool {
-    features.has_delta_bsdfs && features.has_hittable_lights()
+/// A caustic path needs three vertices after the camera (diffuse, delta, light), so none fits
+/// a `max_depth` of 2 or less.
+pub fn light_tracing_applies(features: &SceneFeatures, max_depth: Option<u32>) -> bool {
+    features.has_delta_bsdfs
+        && features.has_hittable_lights()
+        && max_depth.is_none_or(|depth| depth >= 3)
 }
 
 /// A 64-bit seed from the command line folded into the sampler's 32 bits.

@@ -11,6 +11,9 @@ pub const MAX_SAMPLE_COUNT: u32 = 1 << 24;
 /// Most light or BSDF samples the `direct` integrator may take per camera sample: 2¹⁶.
 pub const MAX_DIRECT_SAMPLES: i64 = 1 << 16;
 
+/// Most lobes a `lanczos` reconstruction filter may have (its radius in pixels is the count).
+pub const MAX_LANCZOS_LOBES: u32 = 16;
+
 /// Longest scene (or included) XML file read, bytes: 64 MiB. Reading stops there, so naming a
 /// device such as `/dev/zero` as the scene cannot exhaust memory.
 pub const MAX_SCENE_FILE_BYTES: u64 = 64 << 20;

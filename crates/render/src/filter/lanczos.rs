@@ -2,6 +2,7 @@
 
 use super::FilterError;
 use super::table::{FilterTable, SEGMENTS_PER_PIXEL};
+pub use scene::limits::MAX_LANCZOS_LOBES;
 
 /// The Lanczos filter with `lobes` lobes (Mitsuba's default 3), of radius `lobes` pixels:
 /// `f₁(x) = sin(πx) sin(πx / lobes) / (πx · πx / lobes)`, 1 at 0, zero beyond the radius.
@@ -13,9 +14,6 @@ pub struct LanczosFilter {
     lobes: u32,
     table: FilterTable,
 }
-
-/// Most lobes a Lanczos filter may have: its radius in pixels is the lobe count.
-pub const MAX_LANCZOS_LOBES: u32 = 16;
 
 impl LanczosFilter {
     /// The filter with `lobes` lobes; an error outside `1..=MAX_LANCZOS_LOBES`.

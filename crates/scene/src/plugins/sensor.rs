@@ -7,7 +7,7 @@ use crate::desc::{
     FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
 };
 use crate::error::Result;
-use crate::limits::{MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
+use crate::limits::{MAX_FILM_PIXELS, MAX_LANCZOS_LOBES, MAX_SAMPLE_COUNT};
 use crate::params::Params;
 use crate::xml::tree::{Child, ObjectNode};
 
@@ -271,7 +271,7 @@ fn filter_desc(node: &ObjectNode) -> Result<FilterDesc> {
         },
         "catmullrom" => FilterDesc::CatmullRom,
         "lanczos" => FilterDesc::Lanczos {
-            lobes: params.integer_in("lobes", 3, 1, 16)? as u32,
+            lobes: params.integer_in("lobes", 3, 1, i64::from(MAX_LANCZOS_LOBES))? as u32,
         },
         _ => return Err(unknown_type(node, &FILTERS)),
     };
