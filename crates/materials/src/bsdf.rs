@@ -4,6 +4,7 @@ use crate::conductor::Conductor;
 use crate::dielectric::Dielectric;
 use crate::diffuse::Diffuse;
 use crate::rough_conductor::RoughConductor;
+use crate::thin_dielectric::ThinDielectric;
 use crate::two_sided::TwoSided;
 use glam::{Vec2, Vec3};
 
@@ -40,6 +41,9 @@ pub enum Bsdf {
     RoughConductor(RoughConductor),
     /// Smooth glass-like interface (Mitsuba's `dielectric`).
     Dielectric(Dielectric),
+    /// A thin pane of glass, reflecting and letting light straight through (Mitsuba's
+    /// `thindielectric`).
+    ThinDielectric(ThinDielectric),
     /// A reflecting BSDF seen the same from both sides (Mitsuba's `twosided`).
     TwoSided(TwoSided),
 }
@@ -52,7 +56,7 @@ impl Bsdf {
             Self::Diffuse(b) => b.eval(wo, wi),
             Self::RoughConductor(b) => b.eval(wo, wi),
             Self::TwoSided(b) => b.eval(wo, wi),
-            Self::Conductor(_) | Self::Dielectric(_) => Vec3::ZERO,
+            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => Vec3::ZERO,
         }
     }
 
@@ -64,7 +68,7 @@ impl Bsdf {
             Self::Diffuse(b) => b.pdf_solid_angle(wo, wi),
             Self::RoughConductor(b) => b.pdf_solid_angle(wo, wi),
             Self::TwoSided(b) => b.pdf_solid_angle(wo, wi),
-            Self::Conductor(_) | Self::Dielectric(_) => 0.0,
+            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => 0.0,
         }
     }
 
@@ -76,7 +80,7 @@ impl Bsdf {
             Self::Diffuse(b) => b.eval_with_pdf(wo, wi),
             Self::RoughConductor(b) => b.eval_with_pdf(wo, wi),
             Self::TwoSided(b) => b.eval_with_pdf(wo, wi),
-            Self::Conductor(_) | Self::Dielectric(_) => (Vec3::ZERO, 0.0),
+            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => (Vec3::ZERO, 0.0),
         }
     }
 
@@ -87,7 +91,10 @@ impl Bsdf {
         match self {
             Self::RoughConductor(_) => true,
             Self::TwoSided(b) => b.front().is_glossy() || b.back().is_glossy(),
-            Self::Diffuse(_) | Self::Conductor(_) | Self::Dielectric(_) => false,
+            Self::Diffuse(_)
+            | Self::Conductor(_)
+            | Self::Dielectric(_)
+            | Self::ThinDielectric(_) => false,
         }
     }
 
@@ -100,7 +107,10 @@ impl Bsdf {
         match self {
             Self::RoughConductor(b) => Some(b.lobe_weight(wo, wi)),
             Self::TwoSided(b) => b.lobe_weight(wo, wi),
-            Self::Diffuse(_) | Self::Conductor(_) | Self::Dielectric(_) => None,
+            Self::Diffuse(_)
+            | Self::Conductor(_)
+            | Self::Dielectric(_)
+            | Self::ThinDielectric(_) => None,
         }
     }
 
@@ -115,6 +125,7 @@ impl Bsdf {
             Self::Conductor(b) => b.sample(wo),
             Self::RoughConductor(b) => b.sample(wo, u_dir),
             Self::Dielectric(b) => b.sample(wo, u_lobe),
+            Self::ThinDielectric(b) => b.sample(wo, u_lobe),
             Self::TwoSided(b) => b.sample(wo, u_lobe, u_dir),
         }
     }
@@ -126,7 +137,7 @@ impl Bsdf {
     #[inline]
     pub fn is_delta(&self) -> bool {
         match self {
-            Self::Conductor(_) | Self::Dielectric(_) => true,
+            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => true,
             Self::Diffuse(_) | Self::RoughConductor(_) => false,
             Self::TwoSided(b) => b.is_delta(),
         }
@@ -147,16 +158,16 @@ impl Bsdf {
     #[inline]
     pub fn uses_lobe_choice(&self) -> bool {
         match self {
-            Self::Dielectric(_) => true,
+            Self::Dielectric(_) | Self::ThinDielectric(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
             Self::TwoSided(b) => b.front().uses_lobe_choice() || b.back().uses_lobe_choice(),
         }
     }
 
-    /// Whether light can pass to the other side of the surface (a dielectric).
+    /// Whether light can pass to the other side of the surface (a dielectric, thin or not).
     pub fn has_transmission(&self) -> bool {
         match self {
-            Self::Dielectric(_) => true,
+            Self::Dielectric(_) | Self::ThinDielectric(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
             Self::TwoSided(b) => b.front().has_transmission() || b.back().has_transmission(),
         }
@@ -173,6 +184,7 @@ impl Bsdf {
             Self::Conductor(b) => b.reflectance(1.0),
             Self::RoughConductor(b) => b.normal_reflectance(),
             Self::Dielectric(b) => b.normal_albedo(),
+            Self::ThinDielectric(b) => b.normal_albedo(),
             Self::TwoSided(b) => 0.5 * (b.front().albedo_hint() + b.back().albedo_hint()),
         }
     }
@@ -199,6 +211,12 @@ impl From<RoughConductor> for Bsdf {
 impl From<Dielectric> for Bsdf {
     fn from(b: Dielectric) -> Self {
         Self::Dielectric(b)
+    }
+}
+
+impl From<ThinDielectric> for Bsdf {
+    fn from(b: ThinDielectric) -> Self {
+        Self::ThinDielectric(b)
     }
 }
 

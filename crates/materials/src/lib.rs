@@ -36,6 +36,7 @@ pub mod fresnel;
 pub mod microfacet;
 mod rough_conductor;
 mod special;
+mod thin_dielectric;
 mod two_sided;
 
 pub use bsdf::{Bsdf, BsdfSample};
@@ -46,4 +47,5 @@ pub use error::MaterialError;
 pub use fresnel::ComplexIor;
 pub use microfacet::{Microfacet, MicrofacetKind};
 pub use rough_conductor::{LOBE_WEIGHT_FLOOR, RoughConductor};
+pub use thin_dielectric::ThinDielectric;
 pub use two_sided::TwoSided;

@@ -11,7 +11,7 @@ use materials::LOBE_WEIGHT_FLOOR;
 use materials::fresnel::{fresnel_conductor, reflect};
 use materials::{
     Bsdf, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind,
-    TwoSided,
+    ThinDielectric, TwoSided,
 };
 use sampling::Rng;
 use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
@@ -75,6 +75,8 @@ fn all_bsdfs() -> Vec<(String, Bsdf)> {
     ));
     let glass = Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior");
     all.push(("glass".to_string(), Bsdf::from(glass)));
+    let pane = ThinDielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior");
+    all.push(("thin glass".to_string(), Bsdf::from(pane)));
     all
 }
 
@@ -287,12 +289,16 @@ fn white_furnace_is_exactly_one_for_lossless_bsdfs() {
             "glass",
             Bsdf::from(Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior")),
         ),
+        (
+            "thin glass",
+            Bsdf::from(ThinDielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior")),
+        ),
     ];
     for (name, bsdf) in lossless {
         for degrees in INCIDENCE_DEGREES {
             let above = incidence(degrees);
             for wo in [above, Vec3::new(above.x, above.y, -above.z)] {
-                if wo.z < 0.0 && !name.starts_with("twosided") && name != "glass" {
+                if wo.z < 0.0 && !name.starts_with("twosided") && !name.ends_with("glass") {
                     continue;
                 }
                 let (mean, _) = furnace_by_sampling(&bsdf, wo, 10_000, &mut rng);

@@ -11,7 +11,7 @@ use integrators::World;
 use lights::{ConstantEnvironment, Light, MeshAreaLight, PointLight, SphereAreaLight};
 use materials::{
     Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, RoughConductor,
-    TwoSided,
+    ThinDielectric, TwoSided,
 };
 
 /// A scene ready to render: what light transport needs, the camera, and the description's
@@ -177,6 +177,19 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
             specular_reflectance,
             specular_transmittance,
         } => Dielectric::new(
+            *int_ior,
+            *ext_ior,
+            *specular_reflectance,
+            *specular_transmittance,
+        )
+        .map_err(|e| e.to_string())?
+        .into(),
+        BsdfDesc::ThinDielectric {
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+        } => ThinDielectric::new(
             *int_ior,
             *ext_ior,
             *specular_reflectance,

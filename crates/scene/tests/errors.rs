@@ -67,7 +67,7 @@ fn unsupported_things() {
         &wrap("<bsdf type=\"plastic\"/>"),
         4,
         "<bsdf type=\"plastic\">",
-        "supported: diffuse, conductor, roughconductor, dielectric, twosided",
+        "supported: diffuse, conductor, roughconductor, dielectric, thindielectric, twosided",
     );
     expect(
         "envmap.xml",
@@ -499,6 +499,13 @@ fn references_and_parameters() {
         &wrap("<bsdf type=\"twosided\">\n<bsdf type=\"dielectric\"/>\n</bsdf>"),
         5,
         "<bsdf type=\"dielectric\">",
+        "one-sided reflective",
+    );
+    expect(
+        "twosided_pane.xml",
+        &wrap("<bsdf type=\"twosided\">\n<bsdf type=\"thindielectric\"/>\n</bsdf>"),
+        5,
+        "<bsdf type=\"thindielectric\">",
         "one-sided reflective",
     );
     // Positive, but infinite in single precision: rejected where the BSDF is built, and still

@@ -124,6 +124,41 @@ fn bsdf_defaults_and_named_iors() {
     assert!(close(k, Vec3::new(3.983, 2.386, 1.603), 2e-3), "{k}");
 }
 
+/// `thindielectric` reads Mitsuba's defaults (bk7 in air), named indices and both multipliers;
+/// equal indices are allowed (an invisible pane), unlike the solid `dielectric`.
+#[test]
+fn thin_dielectric_parameters() {
+    let desc = ok(
+        "thin.xml",
+        &wrap(
+            "<bsdf type=\"thindielectric\"/>
+<bsdf type=\"thindielectric\"><string name=\"int_ior\" value=\"water\"/><rgb name=\"specular_reflectance\" value=\"0.5, 0.6, 0.7\"/><float name=\"specular_transmittance\" value=\"0.25\"/></bsdf>
+<bsdf type=\"thindielectric\"><float name=\"int_ior\" value=\"1.2\"/><float name=\"ext_ior\" value=\"1.2\"/></bsdf>",
+        ),
+    );
+    assert_eq!(
+        desc.bsdfs[0],
+        BsdfDesc::ThinDielectric {
+            int_ior: 1.5046,
+            ext_ior: 1.000277,
+            specular_reflectance: Vec3::ONE,
+            specular_transmittance: Vec3::ONE
+        }
+    );
+    assert_eq!(
+        desc.bsdfs[1],
+        BsdfDesc::ThinDielectric {
+            int_ior: 1.333,
+            ext_ior: 1.000277,
+            specular_reflectance: Vec3::new(0.5, 0.6, 0.7),
+            specular_transmittance: Vec3::splat(0.25)
+        }
+    );
+    assert!(
+        matches!(desc.bsdfs[2], BsdfDesc::ThinDielectric { int_ior, ext_ior, .. } if int_ior == 1.2 && ext_ior == 1.2)
+    );
+}
+
 /// `direct`'s counts as Mitsuba reads them: `shading_samples` sets both, each may be zero.
 #[test]
 fn direct_sample_counts() {

@@ -55,6 +55,18 @@ pub enum BsdfDesc {
         /// Multiplier on transmission, each channel in [0, 1] (default 1).
         specular_transmittance: Vec3,
     },
+    /// `thindielectric`: a thin pane of a dielectric, reflecting and letting light straight
+    /// through.
+    ThinDielectric {
+        /// Index of refraction of the pane, default bk7 = 1.5046.
+        int_ior: f32,
+        /// Index of refraction around it, default air = 1.000277.
+        ext_ior: f32,
+        /// Multiplier on reflection, each channel in [0, 1] (default 1).
+        specular_reflectance: Vec3,
+        /// Multiplier on transmission, each channel in [0, 1] (default 1).
+        specular_transmittance: Vec3,
+    },
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.
     TwoSided {

@@ -1,4 +1,4 @@
-//! `<bsdf>`: diffuse, conductor, roughconductor, dielectric and twosided, plus the table of BSDFs
+//! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, thindielectric and twosided, plus the table of BSDFs
 //! that shapes index and `<ref id>` resolves into.
 
 use std::collections::HashMap;
@@ -11,11 +11,12 @@ use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
 /// The BSDF plugins this loader understands.
-const SUPPORTED: [&str; 5] = [
+const SUPPORTED: [&str; 6] = [
     "diffuse",
     "conductor",
     "roughconductor",
     "dielectric",
+    "thindielectric",
     "twosided",
 ];
 
@@ -170,14 +171,15 @@ impl<'a> BsdfTable<'a> {
                     int_ior: int_ior as f32,
                     ext_ior: ext_ior as f32,
                     specular_reflectance: specular_reflectance(&mut params)?,
-                    specular_transmittance: rgb(
-                        &mut params,
-                        "specular_transmittance",
-                        ColorKind::Reflectance,
-                        1.0,
-                    )?,
+                    specular_transmittance: specular_transmittance(&mut params)?,
                 }
             }
+            "thindielectric" => BsdfDesc::ThinDielectric {
+                int_ior: ior(&mut params, "int_ior", 1.5046)? as f32,
+                ext_ior: ior(&mut params, "ext_ior", 1.000277)? as f32,
+                specular_reflectance: specular_reflectance(&mut params)?,
+                specular_transmittance: specular_transmittance(&mut params)?,
+            },
             _ => return Err(unknown_type(node, &SUPPORTED)),
         };
         params.finish()?;
@@ -207,9 +209,11 @@ impl<'a> BsdfTable<'a> {
                 Child::Object(_) => return Err(unexpected_child(node, child, "one or two BSDFs")),
             };
             match bsdf {
-                BsdfDesc::TwoSided { .. } | BsdfDesc::Dielectric { .. } => {
+                BsdfDesc::TwoSided { .. }
+                | BsdfDesc::Dielectric { .. }
+                | BsdfDesc::ThinDielectric { .. } => {
                     return Err(child_loc(child).error(
-                        "twosided can only wrap one-sided reflective BSDFs (not twosided or dielectric)",
+                        "twosided can only wrap one-sided reflective BSDFs (not twosided, dielectric or thindielectric)",
                     ));
                 }
                 bsdf => sides.push(bsdf),
@@ -328,6 +332,15 @@ fn alpha(params: &mut Params) -> Result<f32> {
 /// Mitsuba's `specular_reflectance` multiplier (default 1).
 fn specular_reflectance(params: &mut Params) -> Result<glam::Vec3> {
     rgb(params, "specular_reflectance", ColorKind::Reflectance, 1.0)
+}
+
+fn specular_transmittance(params: &mut Params) -> Result<glam::Vec3> {
+    rgb(
+        params,
+        "specular_transmittance",
+        ColorKind::Reflectance,
+        1.0,
+    )
 }
 
 fn ior(params: &mut Params, name: &'static str, default: f64) -> Result<f64> {
