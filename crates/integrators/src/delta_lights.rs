@@ -1,5 +1,5 @@
-//! Connecting a shading point to every delta light: the only unbiased way to see point lights
-//! without light selection, since no sampled direction can hit them.
+//! Connecting a shading point to every delta light: the only unbiased way to see point, spot and
+//! directional lights without light selection, since no sampled direction can hit them.
 
 use crate::{RayTally, SurfaceHit, World};
 use glam::{Vec2, Vec3};
@@ -19,15 +19,7 @@ pub(crate) fn delta_lights(
         };
         let wi = surface.frame.to_local(s.wi);
         let f = surface.bsdf.eval(wo, wi);
-        if f != Vec3::ZERO
-            && world.unoccluded(
-                surface.hit.p,
-                surface.hit.ng,
-                s.p_light,
-                s.n_light,
-                counters,
-            )
-        {
+        if f != Vec3::ZERO && world.light_unoccluded(surface.hit.p, surface.hit.ng, &s, counters) {
             sum += f * wi.z.abs() * s.radiance / s.pdf_solid_angle;
         }
     }

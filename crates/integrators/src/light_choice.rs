@@ -145,7 +145,8 @@ fn resample(
 
 /// The resampling target of `light` at the shading point of `surface` seen from `wo` (local
 /// frame): [`Light::irradiance_estimate`], and on a `glossy` BSDF (a rough conductor) times its
-/// [`Bsdf::lobe_weight`] (an estimate of f · cos θi) towards the light's centre, so that a glossy
+/// [`Bsdf::lobe_weight`] (an estimate of f · cos θi) towards the light's centre (a directional
+/// light's direction), so that a glossy
 /// surface chooses the lights it reflects rather than those that merely shine on it. The
 /// environment surrounds the lobe: it gets [`ENVIRONMENT_LOBE_WEIGHT`]. Positive wherever the
 /// irradiance estimate is (the lobe weight has a floor), which keeps RIS unbiased. On Veach's
@@ -159,9 +160,13 @@ fn selection_target(light: &Light, surface: &SurfaceHit<'_>, wo: Vec3, glossy: b
     if !glossy {
         return irradiance;
     }
-    let lobe = match light.bounding_sphere() {
-        Some((centre, _)) => {
-            let towards = surface.frame.to_local(centre - p).normalize_or_zero();
+    let towards = match light {
+        Light::Directional(l) => Some(l.towards_light()),
+        _ => light.bounding_sphere().map(|(centre, _)| centre - p),
+    };
+    let lobe = match towards {
+        Some(towards) => {
+            let towards = surface.frame.to_local(towards).normalize_or_zero();
             surface.bsdf.lobe_weight(wo, towards)
         }
         None => Some(ENVIRONMENT_LOBE_WEIGHT),

@@ -380,18 +380,7 @@ impl PathIntegrator {
             return Vec3::ZERO;
         };
         let sample = chosen.sample;
-        let visible = if sample.distance.is_finite() {
-            world.unoccluded(
-                surface.hit.p,
-                surface.hit.ng,
-                sample.p_light,
-                sample.n_light,
-                counters,
-            )
-        } else {
-            world.escapes(surface.hit.p, surface.hit.ng, sample.wi, counters)
-        };
-        if !visible {
+        if !world.light_unoccluded(surface.hit.p, surface.hit.ng, &sample, counters) {
             return Vec3::ZERO;
         }
         let mis_weight = if sample.is_delta {

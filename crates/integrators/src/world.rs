@@ -4,7 +4,7 @@
 use crate::{CameraRay, RayTally};
 use geometry::{Accel, Hit, Ray};
 use glam::Vec3;
-use lights::Light;
+use lights::{Light, LightSample};
 use materials::Bsdf;
 use sampling::Frame;
 
@@ -218,6 +218,25 @@ impl World {
         let (ray, distance) = Ray::spawn_to(p, ng, p_light, n_light);
         tally.shadow_ray(&ray, distance);
         !self.accel.occluded(&ray, distance)
+    }
+
+    /// True when nothing blocks the light of `sample` from reaching the surface point `p`
+    /// (geometric normal `ng`): the segment to its point, or for lights at infinity (the
+    /// environment, directional lights) the ray escaping the scene. Told to `tally` as one
+    /// shadow ray.
+    #[inline]
+    pub fn light_unoccluded(
+        &self,
+        p: Vec3,
+        ng: Vec3,
+        sample: &LightSample,
+        tally: &mut impl RayTally,
+    ) -> bool {
+        if sample.distance.is_finite() {
+            self.unoccluded(p, ng, sample.p_light, sample.n_light, tally)
+        } else {
+            self.escapes(p, ng, sample.wi, tally)
+        }
     }
 
     /// True when nothing blocks the ray from `p` (geometric normal `ng`) in direction `dir` from

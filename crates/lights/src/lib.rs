@@ -7,10 +7,12 @@
 //! surface lights and [`Light::radiance_from_direction`] for the environment.
 //!
 //! Conventions follow Mitsuba 3: area emitters are one-sided and emit on the side their
-//! geometric normal points to; a point light has intensity in W/sr; a constant environment emits
-//! the same radiance from every direction.
+//! geometric normal points to; a point light has intensity in W/sr (a spot light on its axis); a
+//! directional light has irradiance in W/m²; a constant environment emits the same radiance from
+//! every direction.
 
 mod area_sample;
+mod directional;
 mod emission;
 mod environment;
 mod light;
@@ -19,7 +21,9 @@ mod point;
 mod sample;
 mod selection;
 mod sphere_area;
+mod spot;
 
+pub use directional::DirectionalLight;
 pub use emission::EmissionSample;
 pub use environment::ConstantEnvironment;
 pub use light::Light;
@@ -28,6 +32,7 @@ pub use point::PointLight;
 pub use sample::{LightSample, mean_rgb};
 pub use selection::{LightSelection, LightSelector};
 pub use sphere_area::SphereAreaLight;
+pub use spot::SpotLight;
 
 /// Converts a density per unit area at a surface point into a density per steradian seen from a
 /// point `distance` away, where `cos_at_light` is the cosine between the surface normal and the

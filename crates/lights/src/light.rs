@@ -1,8 +1,8 @@
 //! The closed set of emitter types, dispatched by enum.
 
 use crate::{
-    ConstantEnvironment, EmissionSample, LightSample, MeshAreaLight, PointLight, SphereAreaLight,
-    mean_rgb,
+    ConstantEnvironment, DirectionalLight, EmissionSample, LightSample, MeshAreaLight, PointLight,
+    SphereAreaLight, SpotLight, mean_rgb,
 };
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -16,6 +16,10 @@ pub enum Light {
     Sphere(SphereAreaLight),
     /// Point light (a delta light).
     Point(PointLight),
+    /// Spot light: a point light with an angular falloff (a delta light).
+    Spot(SpotLight),
+    /// Parallel light from infinitely far away (a delta light).
+    Directional(DirectionalLight),
     /// Constant environment.
     Environment(ConstantEnvironment),
 }
@@ -29,19 +33,23 @@ impl Light {
             Light::Mesh(l) => l.sample_li(p, u),
             Light::Sphere(l) => l.sample_li(p, u),
             Light::Point(l) => l.sample_li(p),
+            Light::Spot(l) => l.sample_li(p),
+            Light::Directional(l) => Some(l.sample_li(p)),
             Light::Environment(l) => l.sample_li(p, u),
         }
     }
 
     /// Light leaving an area emitter's surface (see [`EmissionSample`]), with `u_point` and
-    /// `u_dir` uniform in [0, 1)²; `None` for point lights and the environment, which light
+    /// `u_dir` uniform in [0, 1)²; `None` for delta lights and the environment, which light
     /// tracing leaves to the path tracer.
     #[inline]
     pub fn sample_emission(&self, u_point: Vec2, u_dir: Vec2) -> Option<EmissionSample> {
         match self {
             Light::Mesh(l) => l.sample_emission(u_point, u_dir),
             Light::Sphere(l) => l.sample_emission(u_point, u_dir),
-            Light::Point(_) | Light::Environment(_) => None,
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => {
+                None
+            }
         }
     }
 
@@ -52,7 +60,9 @@ impl Light {
         let radiance = match self {
             Light::Mesh(l) => l.radiance(),
             Light::Sphere(l) => l.radiance,
-            Light::Point(_) | Light::Environment(_) => return Vec3::ZERO,
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => {
+                return Vec3::ZERO;
+            }
         };
         // Area emitters are one-sided: they emit on the side their geometric normal points to.
         if ng.dot(w) > 0.0 {
@@ -74,13 +84,13 @@ impl Light {
 
     /// Density per steradian with which [`Self::sample_li`] from `p` would have chosen the point
     /// `p_light` with geometric normal `n_light` on this light's surface. Zero for lights without
-    /// a surface (point lights, the environment).
+    /// a surface (delta lights, the environment).
     #[inline]
     pub fn pdf_li_surface(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
         match self {
             Light::Mesh(l) => l.pdf_li(p, p_light, n_light),
             Light::Sphere(l) => l.pdf_li(p, p_light, n_light),
-            Light::Point(_) | Light::Environment(_) => 0.0,
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => 0.0,
         }
     }
 
@@ -94,31 +104,43 @@ impl Light {
         }
     }
 
-    /// True for lights that a randomly sampled ray can never hit.
+    /// True for lights that a randomly sampled ray can never hit (point, spot and directional
+    /// lights).
     #[inline]
     pub fn is_delta(&self) -> bool {
-        matches!(self, Light::Point(_))
+        matches!(
+            self,
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_)
+        )
     }
 
     /// A sphere (centre, radius; world units) holding the light's emitting surface or point
-    /// (radius 0); `None` for the environment, which surrounds everything.
+    /// (radius 0); `None` for the environment and directional lights, which lie at infinity.
     pub fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
         match self {
             Light::Mesh(l) => Some(l.bounding_sphere()),
             Light::Sphere(l) => Some((l.center, l.radius)),
             Light::Point(l) => Some((l.position, 0.0)),
-            Light::Environment(_) => None,
+            Light::Spot(l) => Some((l.position(), 0.0)),
+            Light::Directional(_) | Light::Environment(_) => None,
         }
     }
 
     /// Irradiance (W m⁻², mean over channels) that the light could deliver at most, roughly, to a
     /// surface at `p` with unit normal `n`, either side: power / (4π max(d², r²)) for a light
     /// inside a sphere of radius r at distance d, times a bound on |cos θ| over that sphere; π
-    /// times the radiance for the environment. Zero only where the light cannot reach `p`'s
+    /// times the radiance for the environment; for spot and directional lights the irradiance
+    /// itself (falloff and |cos θ| included). Zero only where the light cannot reach `p`'s
     /// tangent plane from either side; the target of resampled light selection.
     pub fn irradiance_estimate(&self, p: Vec3, n: Vec3) -> f32 {
-        if let Light::Environment(l) = self {
-            return PI * mean_rgb(l.radiance);
+        match self {
+            Light::Environment(l) => return PI * mean_rgb(l.radiance),
+            Light::Directional(l) => return l.irradiance() * l.towards_light().dot(n).abs(),
+            Light::Spot(l) => {
+                let cos = (l.position() - p).normalize_or_zero().dot(n).abs();
+                return l.irradiance_facing(p) * cos;
+            }
+            _ => {}
         }
         let Some((center, radius)) = self.bounding_sphere() else {
             return 0.0;
@@ -140,6 +162,8 @@ impl Light {
             Light::Mesh(l) => l.power(),
             Light::Sphere(l) => l.power(),
             Light::Point(l) => l.power(),
+            Light::Spot(l) => l.power(),
+            Light::Directional(l) => l.power(),
             Light::Environment(l) => l.power(),
         }
     }

@@ -8,7 +8,10 @@ use crate::{
 };
 use geometry::{Accel, Shape, Sphere, TriangleMesh};
 use integrators::World;
-use lights::{ConstantEnvironment, Light, MeshAreaLight, PointLight, SphereAreaLight};
+use lights::{
+    ConstantEnvironment, DirectionalLight, Light, MeshAreaLight, PointLight, SphereAreaLight,
+    SpotLight,
+};
 use materials::{
     Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, RoughConductor,
     ThinDielectric, TwoSided,
@@ -81,6 +84,26 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
                 position,
                 intensity,
             }),
+            EmitterDesc::Spot {
+                position,
+                axes,
+                intensity,
+                cutoff_angle,
+                beam_width,
+                ..
+            } => Light::Spot(
+                SpotLight::new(position, axes, intensity, cutoff_angle, beam_width)
+                    .ok_or_else(|| error("scene".to_string(), "invalid spot light".to_string()))?,
+            ),
+            EmitterDesc::Directional {
+                direction,
+                irradiance,
+                ..
+            } => Light::Directional(
+                DirectionalLight::new(direction, irradiance, scene_radius).ok_or_else(|| {
+                    error("scene".to_string(), "invalid directional light".to_string())
+                })?,
+            ),
             EmitterDesc::Constant { radiance, .. } => Light::Environment(ConstantEnvironment {
                 radiance,
                 scene_radius,

@@ -10,7 +10,7 @@
 use crate::desc::{EmitterDesc, Geometry, SceneDesc};
 use glam::{Mat4, Vec3};
 
-/// Translates every position of `desc` (mesh vertices, sphere centres, point lights and the
+/// Translates every position of `desc` (mesh vertices, sphere centres, point and spot lights and the
 /// sensor) by minus the sensor's position.
 pub(crate) fn camera_relative(desc: &mut SceneDesc) {
     let offset = desc.sensor.to_world.w_axis.truncate();
@@ -26,7 +26,7 @@ pub(crate) fn camera_relative(desc: &mut SceneDesc) {
         }
     }
     for emitter in &mut desc.emitters {
-        if let EmitterDesc::Point { position, .. } = emitter {
+        if let EmitterDesc::Point { position, .. } | EmitterDesc::Spot { position, .. } = emitter {
             *position -= offset;
         }
     }

@@ -79,6 +79,31 @@ fn unsupported_things() {
         "not supported",
     );
     expect(
+        "directional_both.xml",
+        &wrap(
+            "<emitter type=\"directional\"><vector name=\"direction\" value=\"0, -1, 0\"/>\n<transform name=\"to_world\"><rotate x=\"1\" angle=\"90\"/></transform></emitter>",
+        ),
+        5,
+        "<transform name=\"to_world\">",
+        "not both",
+    );
+    expect(
+        "directional_zero.xml",
+        &wrap(
+            "<emitter type=\"directional\">\n<vector name=\"direction\" value=\"0, 0, 0\"/></emitter>",
+        ),
+        5,
+        "<vector name=\"direction\"",
+        "non-zero direction",
+    );
+    expect(
+        "spot_cutoff.xml",
+        &wrap("<emitter type=\"spot\">\n<float name=\"cutoff_angle\" value=\"0\"/></emitter>"),
+        5,
+        "<float name=\"cutoff_angle\"",
+        "(0, 180]",
+    );
+    expect(
         "texture.xml",
         &wrap(
             "<shape type=\"cube\"><bsdf type=\"diffuse\">\n<texture type=\"bitmap\" name=\"reflectance\"/>\n</bsdf></shape>",

@@ -159,6 +159,58 @@ fn thin_dielectric_parameters() {
     );
 }
 
+/// `spot` and `directional` read Mitsuba's defaults (cutoff 20°, beam 3/4 of it; +z) and place
+/// themselves by `to_world` or `direction`.
+#[test]
+fn spot_and_directional_parameters() {
+    let desc = ok(
+        "spot.xml",
+        &wrap(
+            "<emitter type=\"spot\"/>
+<emitter type=\"spot\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"90\"/><translate x=\"1\" y=\"2\" z=\"3\"/></transform><float name=\"cutoff_angle\" value=\"40\"/><float name=\"beam_width\" value=\"5\"/><rgb name=\"intensity\" value=\"1, 2, 3\"/></emitter>
+<emitter type=\"directional\"/>
+<emitter type=\"directional\"><vector name=\"direction\" value=\"0, -3, 0\"/><float name=\"irradiance\" value=\"2\"/></emitter>
+<emitter type=\"directional\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"90\"/></transform></emitter>",
+        ),
+    );
+    let e = &desc.emitters;
+    assert!(
+        matches!(e[0], EmitterDesc::Spot { position, cutoff_angle, beam_width, intensity, .. }
+            if position == Vec3::ZERO && cutoff_angle == 20.0 && beam_width == 15.0 && intensity == Vec3::ONE),
+        "{:?}",
+        e[0]
+    );
+    let EmitterDesc::Spot {
+        position,
+        axes,
+        cutoff_angle,
+        beam_width,
+        intensity,
+        ..
+    } = e[1]
+    else {
+        panic!("{:?}", e[1])
+    };
+    assert_eq!(
+        (position, cutoff_angle, beam_width),
+        (Vec3::new(1.0, 2.0, 3.0), 40.0, 5.0)
+    );
+    assert_eq!(intensity, Vec3::new(1.0, 2.0, 3.0));
+    // Rotating +z by 90 degrees about x points the axis down -y.
+    assert!(close(axes.z_axis, Vec3::NEG_Y, 1e-6), "{axes}");
+    let direction = |i: usize| match e[i] {
+        EmitterDesc::Directional {
+            direction,
+            irradiance,
+            ..
+        } => (direction, irradiance),
+        ref other => panic!("{other:?}"),
+    };
+    assert_eq!(direction(2), (Vec3::Z, Vec3::ONE));
+    assert_eq!(direction(3), (Vec3::NEG_Y, Vec3::splat(2.0)));
+    assert!(close(direction(4).0, Vec3::X, 1e-6), "{:?}", direction(4));
+}
+
 /// `direct`'s counts as Mitsuba reads them: `shading_samples` sets both, each may be zero.
 #[test]
 fn direct_sample_counts() {

@@ -1,6 +1,6 @@
 //! Descriptions of materials and lights.
 
-use glam::Vec3;
+use glam::{Mat3, Vec3};
 
 /// Microfacet normal distribution of a rough conductor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -110,6 +110,32 @@ pub enum EmitterDesc {
         /// Selection weight, as [`AreaEmitterDesc::sampling_weight`].
         sampling_weight: f32,
     },
+    /// `spot`: a point light shining along its axis, with Mitsuba's angular falloff.
+    Spot {
+        /// World-space position (the translation of `to_world`; default origin).
+        position: Vec3,
+        /// The linear part of `to_world`, whose +z column is the axis (default identity).
+        axes: Mat3,
+        /// Radiant intensity on the axis, linear RGB, W/sr per channel (default 1).
+        intensity: Vec3,
+        /// Angle from the axis beyond which nothing is emitted, degrees in (0, 180] (default 20).
+        cutoff_angle: f32,
+        /// Angle up to which the full intensity is emitted, degrees ≥ 0 (default 3/4 of the
+        /// cutoff); the falloff is linear in angle between the two.
+        beam_width: f32,
+        /// Selection weight, as [`AreaEmitterDesc::sampling_weight`].
+        sampling_weight: f32,
+    },
+    /// `directional`: parallel light arriving from infinitely far away.
+    Directional {
+        /// Unit world direction in which the light travels (`direction`, or `to_world` applied to
+        /// +z; default +z).
+        direction: Vec3,
+        /// Irradiance on a surface facing the light, linear RGB, W/m² per channel (default 1).
+        irradiance: Vec3,
+        /// Selection weight, as [`AreaEmitterDesc::sampling_weight`].
+        sampling_weight: f32,
+    },
     /// `constant`: radiance arriving uniformly from every direction at infinity.
     Constant {
         /// Radiance, linear RGB, W/(m²·sr) per channel (default 1).
@@ -124,6 +150,12 @@ impl EmitterDesc {
     pub fn sampling_weight(&self) -> f32 {
         match *self {
             EmitterDesc::Point {
+                sampling_weight, ..
+            }
+            | EmitterDesc::Spot {
+                sampling_weight, ..
+            }
+            | EmitterDesc::Directional {
                 sampling_weight, ..
             }
             | EmitterDesc::Constant {

@@ -1,6 +1,6 @@
-//! `<emitter>`: area (inside a shape), point and constant.
+//! `<emitter>`: area (inside a shape), point, spot, directional and constant.
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 use super::{no_children, unknown_type};
 use crate::desc::{AreaEmitterDesc, EmitterDesc};
@@ -9,7 +9,7 @@ use crate::params::{ColorKind, Params};
 use crate::xml::tree::ObjectNode;
 
 /// Emitter plugins accepted at the top level of a scene.
-const SCENE_EMITTERS: [&str; 2] = ["point", "constant"];
+const SCENE_EMITTERS: [&str; 4] = ["point", "spot", "directional", "constant"];
 
 /// Interprets an `<emitter>` nested in a `<shape>`; only `area` is allowed there.
 pub(crate) fn area_emitter(node: &ObjectNode) -> Result<AreaEmitterDesc> {
@@ -61,6 +61,8 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
                 sampling_weight: sampling_weight(&mut params)?,
             }
         }
+        "spot" => spot(&mut params)?,
+        "directional" => directional(&mut params)?,
         "constant" => EmitterDesc::Constant {
             radiance: params
                 .color("radiance", ColorKind::Emission, 1.0)?
@@ -81,12 +83,88 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
         _ => {
             return Err(unknown_type(
                 node,
-                &["point", "constant", "area (inside a shape)"],
+                &[
+                    "point",
+                    "spot",
+                    "directional",
+                    "constant",
+                    "area (inside a shape)",
+                ],
             ));
         }
     };
     params.finish()?;
     Ok(emitter)
+}
+
+/// `spot`: placed and aimed by `to_world` (+z is the axis), with Mitsuba's `cutoff_angle`
+/// (default 20°) and `beam_width` (default 3/4 of the cutoff). Projected textures are refused.
+fn spot(params: &mut Params) -> Result<EmitterDesc> {
+    if params.has("texture") {
+        return Err(params
+            .loc_of("texture")
+            .error("a spot light's projected texture is not supported"));
+    }
+    let to_world = params
+        .transform("to_world")?
+        .unwrap_or(glam::DMat4::IDENTITY);
+    let axes = DMat3::from_mat4(to_world);
+    let determinant = axes.determinant();
+    if !(determinant.is_finite() && determinant != 0.0) {
+        return Err(params
+            .loc_of("to_world")
+            .error("to_world is not invertible (a zero scale?)"));
+    }
+    let cutoff_angle = params.float_or("cutoff_angle", 20.0)?;
+    if !(cutoff_angle > 0.0 && cutoff_angle <= 180.0) {
+        return Err(params.loc_of("cutoff_angle").error(format!(
+            "\"cutoff_angle\" must be in (0, 180] degrees, got {cutoff_angle}"
+        )));
+    }
+    let beam_width = params.float_or("beam_width", cutoff_angle * 0.75)?;
+    if !(beam_width >= 0.0 && beam_width.is_finite()) {
+        return Err(params.loc_of("beam_width").error(format!(
+            "\"beam_width\" must be a non-negative angle in degrees, got {beam_width}"
+        )));
+    }
+    Ok(EmitterDesc::Spot {
+        position: to_world.transform_point3(DVec3::ZERO).as_vec3(),
+        axes: axes.as_mat3(),
+        intensity: params
+            .color("intensity", ColorKind::Emission, 1.0)?
+            .as_vec3(),
+        cutoff_angle: cutoff_angle as f32,
+        beam_width: beam_width as f32,
+        sampling_weight: sampling_weight(params)?,
+    })
+}
+
+/// `directional`: travelling along `direction` or along `to_world` applied to +z (not both).
+fn directional(params: &mut Params) -> Result<EmitterDesc> {
+    let direction = params.point("direction")?;
+    let to_world = params.transform("to_world")?;
+    let (direction, name) = match (direction, to_world) {
+        (Some(_), Some(_)) => {
+            return Err(params
+                .loc_of("to_world")
+                .error("give either \"direction\" or \"to_world\", not both"));
+        }
+        (Some(d), None) => (d, "direction"),
+        (None, Some(m)) => (m.transform_vector3(DVec3::Z), "to_world"),
+        (None, None) => (DVec3::Z, "direction"),
+    };
+    let Some(direction) = direction.try_normalize() else {
+        return Err(params
+            .loc_of(name)
+            .error("a directional light needs a non-zero direction"));
+    };
+    Ok(EmitterDesc::Directional {
+        direction: direction.as_vec3(),
+        irradiance: params
+            .color("irradiance", ColorKind::Emission, 1.0)?
+            .as_vec3(),
+        sampling_weight: sampling_weight(params)?,
+    })
 }
 
 /// Mitsuba's `sampling_weight` of every emitter: positive and finite, default 1.

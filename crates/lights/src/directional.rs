@@ -1,0 +1,62 @@
+//! Directional lights (Mitsuba's `directional` emitter): parallel light from infinitely far away,
+//! like the sun without its disc.
+
+use crate::sample::{LightSample, mean_rgb};
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// Light travelling along one direction with `irradiance` (W m⁻², RGB) on a surface facing it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionalLight {
+    /// Unit direction in which the light travels (world space).
+    direction: Vec3,
+    irradiance: Vec3,
+    /// Radius of a sphere around the scene's geometry, world units (for the power).
+    scene_radius: f32,
+}
+
+impl DirectionalLight {
+    /// Light travelling along `direction` (any non-zero length; `None` otherwise) with
+    /// `irradiance` W m⁻² per channel, for a scene inside a sphere of `scene_radius`.
+    pub fn new(direction: Vec3, irradiance: Vec3, scene_radius: f32) -> Option<Self> {
+        let direction = direction.try_normalize()?;
+        Some(Self {
+            direction,
+            irradiance,
+            scene_radius,
+        })
+    }
+
+    /// The unit direction towards the light (against the direction the light travels).
+    pub fn towards_light(&self) -> Vec3 {
+        -self.direction
+    }
+
+    /// The only direction towards the light, from any point, with the irradiance as the
+    /// delta-light term (`pdf_solid_angle` 1) and an infinite distance: the shadow ray must
+    /// escape the scene.
+    #[inline]
+    pub fn sample_li(&self, p: Vec3) -> LightSample {
+        let wi = -self.direction;
+        LightSample {
+            radiance: self.irradiance,
+            wi,
+            distance: f32::INFINITY,
+            pdf_solid_angle: 1.0,
+            p_light: p + wi,
+            n_light: Vec3::ZERO,
+            is_delta: true,
+        }
+    }
+
+    /// Irradiance on a surface facing the light, W m⁻² (mean over channels).
+    pub fn irradiance(&self) -> f32 {
+        mean_rgb(self.irradiance)
+    }
+
+    /// Power reaching the scene (W, mean over channels): irradiance times the cross-section
+    /// π r² of the scene's bounding sphere, as Mitsuba's emitter counts it.
+    pub fn power(&self) -> f32 {
+        PI * self.scene_radius * self.scene_radius * mean_rgb(self.irradiance)
+    }
+}
