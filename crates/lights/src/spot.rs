@@ -1,6 +1,7 @@
 //! Spot lights (Mitsuba's `spot` emitter): a point light whose intensity falls off away from its
 //! axis and is zero beyond a cutoff angle.
 
+use crate::PointLight;
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Mat3, Vec3};
 use std::f32::consts::PI;
@@ -9,11 +10,11 @@ use std::f32::consts::PI;
 /// within `beam_width` of the axis, then falling linearly in angle to zero at `cutoff_angle`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpotLight {
-    position: Vec3,
+    /// The light on the axis: position and intensity.
+    point: PointLight,
     /// Maps world directions into the light's frame, whose +z is the axis (the inverse of the
     /// linear part of Mitsuba's `to_world`).
     world_to_local: Mat3,
-    intensity: Vec3,
     cutoff_radians: f32,
     cos_cutoff: f32,
     cos_beam: f32,
@@ -47,9 +48,11 @@ impl SpotLight {
         let cutoff = cutoff_degrees.to_radians();
         let beam = beam_width_degrees.to_radians().min(cutoff);
         Some(Self {
-            position,
+            point: PointLight {
+                position,
+                intensity,
+            },
             world_to_local: to_world.inverse(),
-            intensity,
             cutoff_radians: cutoff,
             cos_cutoff: cutoff.cos(),
             cos_beam: beam.cos(),
@@ -60,7 +63,7 @@ impl SpotLight {
 
     /// World-space position of the light.
     pub fn position(&self) -> Vec3 {
-        self.position
+        self.point.position
     }
 
     /// The falloff in [0, 1] towards the world direction `d` (any length) leaving the light: 1
@@ -82,42 +85,29 @@ impl SpotLight {
     /// the light itself and where the falloff is zero.
     #[inline]
     pub fn sample_li(&self, p: Vec3) -> Option<LightSample> {
-        let to_light = self.position - p;
-        let distance_squared = to_light.length_squared();
-        if !(distance_squared.is_finite() && distance_squared > 0.0) {
-            return None;
-        }
-        let falloff = self.falloff(-to_light);
-        if falloff <= 0.0 {
-            return None;
-        }
-        let distance = distance_squared.sqrt();
-        Some(LightSample {
-            radiance: self.intensity * (falloff / distance_squared),
-            wi: to_light / distance,
-            distance,
-            pdf_solid_angle: 1.0,
-            p_light: self.position,
-            n_light: Vec3::ZERO,
-            is_delta: true,
+        let sample = self.point.sample_li(p)?;
+        let falloff = self.falloff(-sample.wi);
+        (falloff > 0.0).then(|| LightSample {
+            radiance: sample.radiance * falloff,
+            ..sample
         })
     }
 
     /// Irradiance (W m⁻², mean over channels) the light delivers at `p` on a surface facing it:
     /// intensity · falloff / distance².
     pub fn irradiance_facing(&self, p: Vec3) -> f32 {
-        let from_light = p - self.position;
+        let from_light = p - self.point.position;
         let distance_squared = from_light.length_squared();
         if distance_squared <= 0.0 || distance_squared.is_nan() {
             return 0.0;
         }
-        mean_rgb(self.intensity) * self.falloff(from_light) / distance_squared
+        mean_rgb(self.point.intensity) * self.falloff(from_light) / distance_squared
     }
 
     /// Total emitted power (W, mean over channels): the axis intensity times ∫ falloff dω
     /// (exact for a rigid `to_world`).
     pub fn power(&self) -> f32 {
-        mean_rgb(self.intensity) * self.falloff_solid_angle
+        mean_rgb(self.point.intensity) * self.falloff_solid_angle
     }
 }
 

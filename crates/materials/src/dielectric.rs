@@ -2,7 +2,7 @@
 //! reflects and refracts by the exact unpolarised Fresnel equations.
 
 use crate::bsdf::BsdfSample;
-use crate::error::MaterialError;
+use crate::error::{MaterialError, relative_ior};
 use crate::fresnel::{fresnel_dielectric, reflect, refract};
 use glam::Vec3;
 
@@ -31,13 +31,8 @@ impl Dielectric {
         specular_reflectance: Vec3,
         specular_transmittance: Vec3,
     ) -> Result<Self, MaterialError> {
-        for (name, value) in [("int_ior", int_ior), ("ext_ior", ext_ior)] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(MaterialError::InvalidIor { name, value });
-            }
-        }
         Ok(Self {
-            eta: int_ior / ext_ior,
+            eta: relative_ior(int_ior, ext_ior)?,
             specular_reflectance,
             specular_transmittance,
         })

@@ -40,3 +40,14 @@ impl fmt::Display for MaterialError {
 }
 
 impl std::error::Error for MaterialError {}
+
+/// The relative index `int_ior / ext_ior` of an interface, or [`MaterialError::InvalidIor`] naming
+/// the first index that is not a finite positive number.
+pub(crate) fn relative_ior(int_ior: f32, ext_ior: f32) -> Result<f32, MaterialError> {
+    for (name, value) in [("int_ior", int_ior), ("ext_ior", ext_ior)] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(MaterialError::InvalidIor { name, value });
+        }
+    }
+    Ok(int_ior / ext_ior)
+}

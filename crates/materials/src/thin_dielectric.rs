@@ -3,7 +3,7 @@
 //! bending it.
 
 use crate::bsdf::BsdfSample;
-use crate::error::MaterialError;
+use crate::error::{MaterialError, relative_ior};
 use crate::fresnel::{fresnel_dielectric, reflect};
 use glam::Vec3;
 
@@ -33,13 +33,8 @@ impl ThinDielectric {
         specular_reflectance: Vec3,
         specular_transmittance: Vec3,
     ) -> Result<Self, MaterialError> {
-        for (name, value) in [("int_ior", int_ior), ("ext_ior", ext_ior)] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(MaterialError::InvalidIor { name, value });
-            }
-        }
         Ok(Self {
-            eta: int_ior / ext_ior,
+            eta: relative_ior(int_ior, ext_ior)?,
             specular_reflectance,
             specular_transmittance,
         })
