@@ -7,6 +7,7 @@ mod counters;
 mod delta_lights;
 mod light_choice;
 mod light_tracer;
+mod next_direction;
 mod optional_draw;
 pub mod path;
 mod ray_log;

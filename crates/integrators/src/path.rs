@@ -15,31 +15,17 @@
 
 use crate::delta_lights::delta_lights;
 use crate::light_choice::choose_light;
+use crate::next_direction::NextDirection;
 use crate::optional_draw::next_1d_if;
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{DirectSamples, LightSelectionMode, Mis, PathSettings};
-use crate::uniform_direction::{sample_uniform_direction, uniform_direction_pdf};
+use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf};
 use crate::{CameraRay, RayTally, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
-
-/// A sampled continuation of the walk.
-#[derive(Clone, Copy, Debug)]
-struct NextDirection {
-    /// The direction, local shading frame, unit length.
-    wi: Vec3,
-    /// Throughput factor f·|cos θi| / pdf (RGB, dimensionless).
-    weight: Vec3,
-    /// Density per steradian of `wi` (for a delta lobe: the probability of choosing the lobe).
-    pdf_solid_angle: f32,
-    /// Whether `wi` came from a delta lobe.
-    is_delta: bool,
-    /// Relative index of refraction crossed (1 for reflection).
-    eta: f32,
-}
 
 /// How many samples of each strategy are combined at a vertex, for the MIS weights.
 #[derive(Clone, Copy, Debug)]
@@ -396,7 +382,7 @@ impl PathIntegrator {
         chosen.f_cos * sample.radiance * (chosen.weight * mis_weight)
     }
 
-    /// The next direction of the walk: by the BSDF's sampling routine or uniformly.
+    /// The next direction of the walk: by the BSDF's sampling routine or without importance.
     #[inline]
     fn next_direction(
         &self,
@@ -405,26 +391,13 @@ impl PathIntegrator {
         u_lobe: f32,
         u_dir: Vec2,
     ) -> Option<NextDirection> {
-        let bsdf = surface.bsdf;
-        if self.settings.sample_bsdf || bsdf.is_delta() {
-            let s = bsdf.sample(wo, u_lobe, u_dir)?;
-            Some(NextDirection {
-                wi: s.wi,
-                weight: s.f * s.wi.z.abs() / s.pdf_solid_angle,
-                pdf_solid_angle: s.pdf_solid_angle,
-                is_delta: s.is_delta,
-                eta: s.eta,
-            })
+        if self.settings.sample_bsdf {
+            surface
+                .bsdf
+                .sample(wo, u_lobe, u_dir)
+                .map(NextDirection::from)
         } else {
-            let (wi, pdf_solid_angle) = sample_uniform_direction(bsdf, wo, u_dir);
-            let f = bsdf.eval(wo, wi);
-            Some(NextDirection {
-                wi,
-                weight: f * wi.z.abs() / pdf_solid_angle,
-                pdf_solid_angle,
-                is_delta: false,
-                eta: 1.0,
-            })
+            sample_without_importance(surface.bsdf, wo, u_lobe, u_dir)
         }
     }
 

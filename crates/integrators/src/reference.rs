@@ -8,7 +8,7 @@
 
 use crate::delta_lights::delta_lights;
 use crate::settings::DirectSamples;
-use crate::uniform_direction::sample_uniform_direction;
+use crate::uniform_direction::sample_without_importance;
 use crate::{CameraRay, RayTally, World};
 use geometry::Ray;
 use glam::Vec3;
@@ -84,21 +84,14 @@ pub fn radiance(
             radiance += throughput * delta_lights(world, &surface, wo, counters);
         }
 
-        let delta = surface.bsdf.is_delta();
-        if delta && first_direct.is_some_and(|s| s.bsdf == 0) {
+        let Some(step) = sample_without_importance(surface.bsdf, wo, u_lobe, u_dir) else {
+            break;
+        };
+        if step.is_delta && first_direct.is_some_and(|s| s.bsdf == 0) {
             break;
         }
-        seen_through_delta &= delta;
-        let (wi, weight) = if delta {
-            let Some(s) = surface.bsdf.sample(wo, u_lobe, u_dir) else {
-                break;
-            };
-            (s.wi, s.f * s.wi.z.abs() / s.pdf_solid_angle)
-        } else {
-            let (wi, pdf) = sample_uniform_direction(surface.bsdf, wo, u_dir);
-            let f = surface.bsdf.eval(wo, wi);
-            (wi, f * wi.z.abs() / pdf)
-        };
+        seen_through_delta &= step.is_delta;
+        let (wi, weight) = (step.wi, step.weight);
         throughput *= weight;
         if throughput == Vec3::ZERO {
             break;

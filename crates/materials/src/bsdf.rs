@@ -3,6 +3,7 @@
 use crate::conductor::Conductor;
 use crate::dielectric::Dielectric;
 use crate::diffuse::Diffuse;
+use crate::plastic::Plastic;
 use crate::rough_conductor::RoughConductor;
 use crate::thin_dielectric::ThinDielectric;
 use crate::two_sided::TwoSided;
@@ -44,6 +45,9 @@ pub enum Bsdf {
     /// A thin pane of glass, reflecting and letting light straight through (Mitsuba's
     /// `thindielectric`).
     ThinDielectric(ThinDielectric),
+    /// A diffuse base under a smooth dielectric coating (Mitsuba's `plastic`): a delta lobe
+    /// and a diffuse one.
+    Plastic(Plastic),
     /// A reflecting BSDF seen the same from both sides (Mitsuba's `twosided`).
     TwoSided(TwoSided),
 }
@@ -55,6 +59,7 @@ impl Bsdf {
         match self {
             Self::Diffuse(b) => b.eval(wo, wi),
             Self::RoughConductor(b) => b.eval(wo, wi),
+            Self::Plastic(b) => b.eval(wo, wi),
             Self::TwoSided(b) => b.eval(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => Vec3::ZERO,
         }
@@ -67,6 +72,7 @@ impl Bsdf {
         match self {
             Self::Diffuse(b) => b.pdf_solid_angle(wo, wi),
             Self::RoughConductor(b) => b.pdf_solid_angle(wo, wi),
+            Self::Plastic(b) => b.pdf_solid_angle(wo, wi),
             Self::TwoSided(b) => b.pdf_solid_angle(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => 0.0,
         }
@@ -79,6 +85,7 @@ impl Bsdf {
         match self {
             Self::Diffuse(b) => b.eval_with_pdf(wo, wi),
             Self::RoughConductor(b) => b.eval_with_pdf(wo, wi),
+            Self::Plastic(b) => b.eval_with_pdf(wo, wi),
             Self::TwoSided(b) => b.eval_with_pdf(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => (Vec3::ZERO, 0.0),
         }
@@ -94,7 +101,8 @@ impl Bsdf {
             Self::Diffuse(_)
             | Self::Conductor(_)
             | Self::Dielectric(_)
-            | Self::ThinDielectric(_) => false,
+            | Self::ThinDielectric(_)
+            | Self::Plastic(_) => false,
         }
     }
 
@@ -110,7 +118,8 @@ impl Bsdf {
             Self::Diffuse(_)
             | Self::Conductor(_)
             | Self::Dielectric(_)
-            | Self::ThinDielectric(_) => None,
+            | Self::ThinDielectric(_)
+            | Self::Plastic(_) => None,
         }
     }
 
@@ -126,7 +135,39 @@ impl Bsdf {
             Self::RoughConductor(b) => b.sample(wo, u_dir),
             Self::Dielectric(b) => b.sample(wo, u_lobe),
             Self::ThinDielectric(b) => b.sample(wo, u_lobe),
+            Self::Plastic(b) => b.sample(wo, u_lobe, u_dir),
             Self::TwoSided(b) => b.sample(wo, u_lobe, u_dir),
+        }
+    }
+
+    /// Samples the delta lobes alone, for strategies that find the other lobes by directions
+    /// of their own: as [`Self::sample`] for a BSDF whose lobes are all deltas, the specular
+    /// lobe of a [`Plastic`] with probability 1 (its weight F · `specular_reflectance`), `None`
+    /// for a BSDF without delta lobes. A [`TwoSided`] samples the side `wo` sees.
+    pub fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        match self {
+            Self::Conductor(b) => b.sample(wo),
+            Self::Dielectric(b) => b.sample(wo, u_lobe),
+            Self::ThinDielectric(b) => b.sample(wo, u_lobe),
+            Self::Plastic(b) => b.sample_specular(wo),
+            Self::TwoSided(b) => b.sample_delta(wo, u_lobe),
+            Self::Diffuse(_) | Self::RoughConductor(_) => None,
+        }
+    }
+
+    /// Whether the BSDF has delta lobes and lobes with a density at once (a [`Plastic`], or a
+    /// [`TwoSided`] with one on either side): strategies that sample directions without the
+    /// BSDF's help must then reach its delta lobes by [`Self::sample_delta`].
+    #[inline]
+    pub fn is_mixed(&self) -> bool {
+        match self {
+            Self::Plastic(_) => true,
+            Self::TwoSided(b) => b.front().is_mixed() || b.back().is_mixed(),
+            Self::Diffuse(_)
+            | Self::Conductor(_)
+            | Self::RoughConductor(_)
+            | Self::Dielectric(_)
+            | Self::ThinDielectric(_) => false,
         }
     }
 
@@ -138,7 +179,7 @@ impl Bsdf {
     pub fn is_delta(&self) -> bool {
         match self {
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => true,
-            Self::Diffuse(_) | Self::RoughConductor(_) => false,
+            Self::Diffuse(_) | Self::RoughConductor(_) | Self::Plastic(_) => false,
             Self::TwoSided(b) => b.is_delta(),
         }
     }
@@ -149,6 +190,7 @@ impl Bsdf {
     pub fn has_delta_lobe(&self) -> bool {
         match self {
             Self::TwoSided(b) => b.front().has_delta_lobe() || b.back().has_delta_lobe(),
+            Self::Plastic(_) => true,
             _ => self.is_delta(),
         }
     }
@@ -158,7 +200,7 @@ impl Bsdf {
     #[inline]
     pub fn uses_lobe_choice(&self) -> bool {
         match self {
-            Self::Dielectric(_) | Self::ThinDielectric(_) => true,
+            Self::Dielectric(_) | Self::ThinDielectric(_) | Self::Plastic(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
             Self::TwoSided(b) => b.front().uses_lobe_choice() || b.back().uses_lobe_choice(),
         }
@@ -168,7 +210,9 @@ impl Bsdf {
     pub fn has_transmission(&self) -> bool {
         match self {
             Self::Dielectric(_) | Self::ThinDielectric(_) => true,
-            Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
+            Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) | Self::Plastic(_) => {
+                false
+            }
             Self::TwoSided(b) => b.front().has_transmission() || b.back().has_transmission(),
         }
     }
@@ -176,7 +220,8 @@ impl Bsdf {
     /// A rough RGB albedo for heuristics (Russian roulette, choosing techniques), not for
     /// shading: the diffuse reflectance; for conductors the reflectance at normal incidence
     /// (`specular_reflectance` × Fresnel at cos θ = 1, ignoring microfacet shadowing); for a
-    /// dielectric F₀ · `specular_reflectance` + (1 − F₀) · `specular_transmittance`; for a
+    /// dielectric F₀ · `specular_reflectance` + (1 − F₀) · `specular_transmittance`; for a plastic
+    /// F₀ · `specular_reflectance` + (1 − F₀) · its base seen through the coating; for a
     /// [`TwoSided`] the mean of its two sides.
     pub fn albedo_hint(&self) -> Vec3 {
         match self {
@@ -185,6 +230,7 @@ impl Bsdf {
             Self::RoughConductor(b) => b.normal_reflectance(),
             Self::Dielectric(b) => b.normal_albedo(),
             Self::ThinDielectric(b) => b.normal_albedo(),
+            Self::Plastic(b) => b.normal_albedo(),
             Self::TwoSided(b) => 0.5 * (b.front().albedo_hint() + b.back().albedo_hint()),
         }
     }
@@ -217,6 +263,12 @@ impl From<Dielectric> for Bsdf {
 impl From<ThinDielectric> for Bsdf {
     fn from(b: ThinDielectric) -> Self {
         Self::ThinDielectric(b)
+    }
+}
+
+impl From<Plastic> for Bsdf {
+    fn from(b: Plastic) -> Self {
+        Self::Plastic(b)
     }
 }
 

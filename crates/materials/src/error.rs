@@ -33,7 +33,7 @@ impl fmt::Display for MaterialError {
             }
             Self::TransmissiveTwoSided => write!(
                 f,
-                "`twosided` can only wrap a reflecting BSDF (diffuse, conductor, roughconductor), not a dielectric"
+                "`twosided` can only wrap a reflecting BSDF (diffuse, conductor, roughconductor, plastic), not a dielectric"
             ),
         }
     }

@@ -95,6 +95,14 @@ impl TwoSided {
         sample.wi = mirror_if(sample.wi, mirrored);
         Some(sample)
     }
+
+    /// The facing BSDF's `sample_delta` for the (mirrored) `wo`, the direction mirrored back.
+    pub fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        let (bsdf, mirrored) = self.facing(wo);
+        let mut sample = bsdf.sample_delta(mirror_if(wo, mirrored), u_lobe)?;
+        sample.wi = mirror_if(sample.wi, mirrored);
+        Some(sample)
+    }
 }
 
 /// `w` mirrored in the tangent plane when `mirrored`, else `w`.

@@ -1,4 +1,5 @@
-//! Chi-square goodness of fit of every non-delta `Bsdf::sample` against its `pdf_solid_angle`,
+//! Chi-square goodness of fit of every non-delta `Bsdf::sample` against its `pdf_solid_angle`
+//! (for a BSDF with a delta lobe too, a plastic, its delta samples count as absorbed),
 //! with the shared `sampling::chi2` harness and a fixed seed per case (the harness report, printed
 //! on failure, replays it). The family-wise significance level is 0.01 over all [`CASES`] cases of
 //! this file, Šidák-corrected by the harness to a per-case level as in Mitsuba's `chi2.py`, so a
@@ -13,12 +14,12 @@ mod fixtures;
 
 use fixtures::{ALPHAS, INCIDENCE_DEGREES, gold, incidence, rough_conductor};
 use glam::{Vec2, Vec3};
-use materials::{Bsdf, ComplexIor, Diffuse, MicrofacetKind, TwoSided};
+use materials::{Bsdf, ComplexIor, Diffuse, MicrofacetKind, Plastic, TwoSided};
 use sampling::Rng;
 use sampling::chi2::{Chi2Config, Chi2Domain, Chi2Outcome, chi2_test};
 
 /// Number of (BSDF, wo) cases tested for goodness of fit in this file.
-const CASES: u32 = 25;
+const CASES: u32 = 27;
 
 /// Family-wise significance level over all cases.
 const FAMILY_SIGNIFICANCE: f64 = 0.01;
@@ -60,6 +61,7 @@ fn run(bsdf: &Bsdf, wo: Vec3, seed: u32) -> Chi2Outcome {
             let u_lobe = rng.next_f32();
             let u_dir = Vec2::new(rng.next_f32(), rng.next_f32());
             bsdf.sample(wo, u_lobe, u_dir)
+                .filter(|s| !s.is_delta)
                 .map(|s| to_binning_frame(s.wi))
         },
         |v| bsdf.pdf_solid_angle(wo, from_binning_frame(v)),
@@ -143,6 +145,22 @@ fn two_sided_with_a_rough_back_from_below_matches_pdf() {
         below,
         31,
     );
+}
+
+#[test]
+fn plastic_diffuse_lobe_matches_pdf() {
+    // At 80 degrees the coating reflects a third of the light and the specular lobe takes
+    // over half the samples, so the diffuse lobe's share (1 − P) is tested where it moves.
+    let plastic = Plastic::new(1.49, 1.0, Vec3::new(0.7, 0.2, 0.2), Vec3::ONE, false);
+    let bsdf = Bsdf::from(plastic.expect("valid ior"));
+    for (i, degrees) in [30.0_f32, 80.0].iter().enumerate() {
+        assert_fits(
+            &format!("plastic at {degrees} degrees"),
+            &bsdf,
+            incidence(*degrees),
+            40 + i as u32,
+        );
+    }
 }
 
 #[test]

@@ -11,7 +11,7 @@ use materials::LOBE_WEIGHT_FLOOR;
 use materials::fresnel::{fresnel_conductor, reflect};
 use materials::{
     Bsdf, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind,
-    ThinDielectric, TwoSided,
+    Plastic, ThinDielectric, TwoSided,
 };
 use sampling::Rng;
 use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
@@ -77,6 +77,18 @@ fn all_bsdfs() -> Vec<(String, Bsdf)> {
     all.push(("glass".to_string(), Bsdf::from(glass)));
     let pane = ThinDielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior");
     all.push(("thin glass".to_string(), Bsdf::from(pane)));
+    let plastic = Bsdf::from(
+        Plastic::new(1.49, 1.0, Vec3::new(0.9, 0.4, 0.1), Vec3::ONE, true).expect("valid ior"),
+    );
+    all.push(("plastic".to_string(), plastic.clone()));
+    all.push(("twosided plastic".to_string(), two_sided(plastic.clone())));
+    all.push((
+        "twosided plastic / diffuse".to_string(),
+        Bsdf::from(
+            TwoSided::with_sides(plastic, Bsdf::from(Diffuse::new(Vec3::splat(0.5))))
+                .expect("both sides reflect"),
+        ),
+    ));
     all
 }
 

@@ -176,6 +176,14 @@ fn glass_and_mirror_cornell_box() {
     check_scene("cbox-glass.xml", EASY);
 }
 
+/// Mitsuba's `plastic` (a delta lobe and a diffuse one in one BSDF, which the reference and the
+/// uniform-direction configuration reach by choosing between the mirror and a uniform
+/// direction), from the Mitsuba crosscheck scenes.
+#[test]
+fn plastic() {
+    check_scene("../tests/crosscheck/plastic.xml", EASY);
+}
+
 #[test]
 #[ignore = "full check (cargo xtask check)"]
 fn cornell_box() {

@@ -13,8 +13,8 @@ use lights::{
     SpotLight,
 };
 use materials::{
-    Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, RoughConductor,
-    ThinDielectric, TwoSided,
+    Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
+    RoughConductor, ThinDielectric, TwoSided,
 };
 
 /// A scene ready to render: what light transport needs, the camera, and the description's
@@ -217,6 +217,21 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
             *ext_ior,
             *specular_reflectance,
             *specular_transmittance,
+        )
+        .map_err(|e| e.to_string())?
+        .into(),
+        BsdfDesc::Plastic {
+            int_ior,
+            ext_ior,
+            diffuse_reflectance,
+            specular_reflectance,
+            nonlinear,
+        } => Plastic::new(
+            *int_ior,
+            *ext_ior,
+            *diffuse_reflectance,
+            *specular_reflectance,
+            *nonlinear,
         )
         .map_err(|e| e.to_string())?
         .into(),

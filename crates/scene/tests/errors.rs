@@ -64,10 +64,10 @@ fn unsupported_things() {
     );
     expect(
         "unknown_bsdf.xml",
-        &wrap("<bsdf type=\"plastic\"/>"),
+        &wrap("<bsdf type=\"roughplastic\"/>"),
         4,
-        "<bsdf type=\"plastic\">",
-        "supported: diffuse, conductor, roughconductor, dielectric, thindielectric, twosided",
+        "<bsdf type=\"roughplastic\">",
+        "supported: diffuse, conductor, roughconductor, dielectric, thindielectric, plastic, twosided",
     );
     expect(
         "envmap.xml",
@@ -532,6 +532,20 @@ fn references_and_parameters() {
         5,
         "<bsdf type=\"thindielectric\">",
         "one-sided reflective",
+    );
+    expect(
+        "plastic_bad_ior.xml",
+        &wrap("<bsdf type=\"plastic\">\n<string name=\"int_ior\" value=\"jelly\"/>\n</bsdf>"),
+        5,
+        "<string name=\"int_ior\"",
+        "unknown material \"jelly\" for int_ior",
+    );
+    expect(
+        "plastic_nonlinear.xml",
+        &wrap("<bsdf type=\"plastic\">\n<string name=\"nonlinear\" value=\"yes\"/>\n</bsdf>"),
+        5,
+        "nonlinear",
+        "boolean",
     );
     // Positive, but infinite in single precision: rejected where the BSDF is built, and still
     // reported at its element.

@@ -159,6 +159,45 @@ fn thin_dielectric_parameters() {
     );
 }
 
+/// `plastic` reads Mitsuba's defaults (polypropylene in air, base 0.5, white coating, linear),
+/// named indices, both colours and `nonlinear`, and may sit inside `twosided`.
+#[test]
+fn plastic_parameters() {
+    let desc = ok(
+        "plastic.xml",
+        &wrap(
+            "<bsdf type=\"plastic\"/>
+<bsdf type=\"plastic\"><string name=\"int_ior\" value=\"water\"/><float name=\"ext_ior\" value=\"1.1\"/><rgb name=\"diffuse_reflectance\" value=\"0.5, 0.6, 0.7\"/><float name=\"specular_reflectance\" value=\"0.25\"/><boolean name=\"nonlinear\" value=\"true\"/></bsdf>
+<bsdf type=\"twosided\"><bsdf type=\"plastic\"/></bsdf>",
+        ),
+    );
+    let default = BsdfDesc::Plastic {
+        int_ior: 1.49,
+        ext_ior: 1.000277,
+        diffuse_reflectance: Vec3::splat(0.5),
+        specular_reflectance: Vec3::ONE,
+        nonlinear: false,
+    };
+    assert_eq!(desc.bsdfs[0], default);
+    assert_eq!(
+        desc.bsdfs[1],
+        BsdfDesc::Plastic {
+            int_ior: 1.333,
+            ext_ior: 1.1,
+            diffuse_reflectance: Vec3::new(0.5, 0.6, 0.7),
+            specular_reflectance: Vec3::splat(0.25),
+            nonlinear: true,
+        }
+    );
+    assert_eq!(
+        desc.bsdfs[2],
+        BsdfDesc::TwoSided {
+            front: Box::new(default.clone()),
+            back: Box::new(default),
+        }
+    );
+}
+
 /// `spot` and `directional` read Mitsuba's defaults (cutoff 20°, beam 3/4 of it; +z) and place
 /// themselves by `to_world` or `direction`.
 #[test]

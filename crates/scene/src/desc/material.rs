@@ -67,6 +67,20 @@ pub enum BsdfDesc {
         /// Multiplier on transmission, each channel in [0, 1] (default 1).
         specular_transmittance: Vec3,
     },
+    /// `plastic`: a diffuse base under a smooth dielectric coating.
+    Plastic {
+        /// Index of refraction of the coating, default polypropylene = 1.49.
+        int_ior: f32,
+        /// Index of refraction outside, default air = 1.000277.
+        ext_ior: f32,
+        /// Albedo of the base, each channel in [0, 1] (default 0.5).
+        diffuse_reflectance: Vec3,
+        /// Multiplier on the coating's reflection, each channel in [0, 1] (default 1).
+        specular_reflectance: Vec3,
+        /// Whether internal scattering shifts the base's colour (Mitsuba's `nonlinear`,
+        /// default false).
+        nonlinear: bool,
+    },
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.
     TwoSided {

@@ -1,4 +1,5 @@
-//! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, thindielectric and twosided, plus the table of BSDFs
+//! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, thindielectric, plastic and twosided,
+//! plus the table of BSDFs
 //! that shapes index and `<ref id>` resolves into.
 
 use std::collections::HashMap;
@@ -11,12 +12,13 @@ use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
 /// The BSDF plugins this loader understands.
-const SUPPORTED: [&str; 6] = [
+const SUPPORTED: [&str; 7] = [
     "diffuse",
     "conductor",
     "roughconductor",
     "dielectric",
     "thindielectric",
+    "plastic",
     "twosided",
 ];
 
@@ -180,6 +182,18 @@ impl<'a> BsdfTable<'a> {
                 specular_reflectance: specular_reflectance(&mut params)?,
                 specular_transmittance: specular_transmittance(&mut params)?,
             },
+            "plastic" => BsdfDesc::Plastic {
+                int_ior: ior(&mut params, "int_ior", 1.49)? as f32,
+                ext_ior: ior(&mut params, "ext_ior", 1.000277)? as f32,
+                diffuse_reflectance: rgb(
+                    &mut params,
+                    "diffuse_reflectance",
+                    ColorKind::Reflectance,
+                    0.5,
+                )?,
+                specular_reflectance: specular_reflectance(&mut params)?,
+                nonlinear: params.boolean_or("nonlinear", false)?,
+            },
             _ => return Err(unknown_type(node, &SUPPORTED)),
         };
         params.finish()?;
@@ -328,12 +342,12 @@ fn alpha(params: &mut Params) -> Result<f32> {
     Ok(value as f32)
 }
 
-/// An index of refraction given as a number or as one of Mitsuba's material names.
 /// Mitsuba's `specular_reflectance` multiplier (default 1).
 fn specular_reflectance(params: &mut Params) -> Result<glam::Vec3> {
     rgb(params, "specular_reflectance", ColorKind::Reflectance, 1.0)
 }
 
+/// Mitsuba's `specular_transmittance` multiplier (default 1).
 fn specular_transmittance(params: &mut Params) -> Result<glam::Vec3> {
     rgb(
         params,
@@ -343,6 +357,7 @@ fn specular_transmittance(params: &mut Params) -> Result<glam::Vec3> {
     )
 }
 
+/// An index of refraction given as a number or as one of Mitsuba's material names.
 fn ior(params: &mut Params, name: &'static str, default: f64) -> Result<f64> {
     let loc = params.loc_of(name);
     let value = match params.string(name) {

@@ -1,0 +1,179 @@
+//! Mitsuba's `plastic`: a diffuse base under a smooth dielectric coating (polypropylene in air
+//! by default), which reflects specularly by Fresnel and lets the rest reach the base, whose
+//! light leaves through the coating after any number of internal reflections.
+
+use crate::bsdf::BsdfSample;
+use crate::error::{MaterialError, relative_ior};
+use crate::fresnel::{diffuse_fresnel_reflectance, fresnel_dielectric, reflect};
+use glam::{Vec2, Vec3};
+use sampling::warp::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
+use std::f32::consts::FRAC_1_PI;
+
+/// A smooth dielectric layer with relative index η = int_ior / ext_ior over a Lambertian base,
+/// one-sided (black from behind), with two lobes:
+///
+/// - specular: a mirror reflecting F(θo) · `specular_reflectance` (a delta lobe);
+/// - diffuse: f = ρ′ / π · (1 − F(θo)) (1 − F(θi)) / η², where the base's reflectance ρ seen
+///   through the coating, its internal reflections summed, is ρ′ = ρ / (1 − F_dr,int), or
+///   with `nonlinear` ρ′ = ρ / (1 − ρ F_dr,int), F_dr,int being the coating's diffuse Fresnel
+///   reflectance from inside ([`diffuse_fresnel_reflectance`] of 1/η).
+///
+/// Sampling chooses the specular lobe with probability proportional to F(θo) · w and the
+/// diffuse one to (1 − F(θo)) (1 − w), where w = s / (s + d) from the means s of
+/// `specular_reflectance` and d of ρ over RGB (Mitsuba's `specular_sampling_weight`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plastic {
+    eta: f32,
+    /// 1 / η², the radiance scale of leaving the coating.
+    inv_eta_sqr: f32,
+    /// ρ′: the base's reflectance with the coating's internal reflections summed, RGB.
+    base_through_coating: Vec3,
+    specular_reflectance: Vec3,
+    specular_sampling_weight: f32,
+}
+
+impl Plastic {
+    /// Mitsuba's default `int_ior`: polypropylene.
+    pub const DEFAULT_INT_IOR: f32 = 1.49;
+    /// Mitsuba's default `ext_ior`: air.
+    pub const DEFAULT_EXT_IOR: f32 = 1.000_277;
+
+    /// A coating of interior index `int_ior` over exterior index `ext_ior` (finite and positive,
+    /// else an error) on a base of RGB albedo `diffuse_reflectance` (Mitsuba's default 0.5),
+    /// with an RGB multiplier on the specular reflection (`specular_reflectance`, default 1)
+    /// and Mitsuba's `nonlinear` switch (internal scattering darkens and saturates the base's
+    /// colour, off by default).
+    pub fn new(
+        int_ior: f32,
+        ext_ior: f32,
+        diffuse_reflectance: Vec3,
+        specular_reflectance: Vec3,
+        nonlinear: bool,
+    ) -> Result<Self, MaterialError> {
+        let eta = relative_ior(int_ior, ext_ior)?;
+        let internal = diffuse_fresnel_reflectance(1.0 / eta);
+        let base_through_coating = if nonlinear {
+            diffuse_reflectance / (Vec3::ONE - diffuse_reflectance * internal)
+        } else {
+            diffuse_reflectance / (1.0 - internal)
+        };
+        let specular_mean = specular_reflectance.element_sum() / 3.0;
+        let diffuse_mean = diffuse_reflectance.element_sum() / 3.0;
+        // Mitsuba's weight is 0/0 for a black material; either choice is then right.
+        let means = diffuse_mean + specular_mean;
+        let specular_sampling_weight = if means > 0.0 {
+            specular_mean / means
+        } else {
+            0.5
+        };
+        Ok(Self {
+            eta,
+            inv_eta_sqr: 1.0 / (eta * eta),
+            base_through_coating,
+            specular_reflectance,
+            specular_sampling_weight,
+        })
+    }
+
+    /// Fresnel reflectance of the coating for light arriving at `cos_theta` ≥ 0 from outside.
+    fn fresnel(&self, cos_theta: f32) -> f32 {
+        fresnel_dielectric(cos_theta, self.eta).reflectance
+    }
+
+    /// The probability that [`Self::sample`] picks the specular lobe, given F(θo).
+    fn specular_probability(&self, fresnel_o: f32) -> f32 {
+        let specular = fresnel_o * self.specular_sampling_weight;
+        let diffuse = (1.0 - fresnel_o) * (1.0 - self.specular_sampling_weight);
+        let total = specular + diffuse;
+        if total > 0.0 { specular / total } else { 0.0 }
+    }
+
+    /// The diffuse lobe's f(wo, wi) per steradian given F(θo), both directions above.
+    fn diffuse_lobe(&self, fresnel_o: f32, cos_i: f32) -> Vec3 {
+        let fresnel_i = self.fresnel(cos_i);
+        self.base_through_coating
+            * (FRAC_1_PI * self.inv_eta_sqr * (1.0 - fresnel_o) * (1.0 - fresnel_i))
+    }
+
+    /// Reflectance multipliers at normal incidence for heuristics, RGB:
+    /// F₀ · `specular_reflectance` + (1 − F₀) · ρ′.
+    pub fn normal_albedo(&self) -> Vec3 {
+        let f0 = self.fresnel(1.0);
+        f0 * self.specular_reflectance + (1.0 - f0) * self.base_through_coating
+    }
+
+    /// f(wo, wi) per steradian of the diffuse lobe (the specular one is a delta); 0 unless both
+    /// directions are above the surface.
+    #[inline]
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        if wo.z > 0.0 && wi.z > 0.0 {
+            self.diffuse_lobe(self.fresnel(wo.z), wi.z)
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// Density per steradian with which [`Self::sample`] produces `wi` by its diffuse lobe: the
+    /// lobe's probability times cos θi / π.
+    #[inline]
+    pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_with_pdf(wo, wi).1
+    }
+
+    /// [`Self::eval`] and [`Self::pdf_solid_angle`] together, sharing F(θo).
+    #[inline]
+    pub fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        if wo.z > 0.0 && wi.z > 0.0 {
+            let fresnel_o = self.fresnel(wo.z);
+            let diffuse_probability = 1.0 - self.specular_probability(fresnel_o);
+            (
+                self.diffuse_lobe(fresnel_o, wi.z),
+                diffuse_probability * cosine_hemisphere_pdf(wi.z),
+            )
+        } else {
+            (Vec3::ZERO, 0.0)
+        }
+    }
+
+    /// The specular lobe alone: the mirror direction with probability 1 and weight
+    /// F(θo) · `specular_reflectance`. `None` unless `wo` is above the surface.
+    pub fn sample_specular(&self, wo: Vec3) -> Option<BsdfSample> {
+        (wo.z > 0.0).then(|| self.specular_sample(wo, self.fresnel(wo.z), 1.0))
+    }
+
+    /// The mirror direction chosen with probability `probability`, weighted so that
+    /// `f · cos θi / pdf` is F(θo) · `specular_reflectance` / `probability`.
+    fn specular_sample(&self, wo: Vec3, fresnel_o: f32, probability: f32) -> BsdfSample {
+        BsdfSample {
+            f: self.specular_reflectance * (fresnel_o / wo.z),
+            wi: reflect(wo),
+            pdf_solid_angle: probability,
+            is_delta: true,
+            eta: 1.0,
+        }
+    }
+
+    /// The specular lobe when `u_lobe` < its probability (Mitsuba's choice), else a cosine-
+    /// weighted direction from `u_dir` by the diffuse lobe. `None` unless `wo` is above the
+    /// surface.
+    #[inline]
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        if wo.z <= 0.0 {
+            return None;
+        }
+        let fresnel_o = self.fresnel(wo.z);
+        let specular_probability = self.specular_probability(fresnel_o);
+        if u_lobe < specular_probability {
+            return Some(self.specular_sample(wo, fresnel_o, specular_probability));
+        }
+        let wi = sample_cosine_hemisphere(u_dir);
+        let pdf = (1.0 - specular_probability) * cosine_hemisphere_pdf(wi.z);
+        (pdf > 0.0).then(|| BsdfSample {
+            f: self.diffuse_lobe(fresnel_o, wi.z),
+            wi,
+            pdf_solid_angle: pdf,
+            is_delta: false,
+            eta: 1.0,
+        })
+    }
+}
