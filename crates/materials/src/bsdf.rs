@@ -5,6 +5,7 @@ use crate::dielectric::Dielectric;
 use crate::diffuse::Diffuse;
 use crate::plastic::Plastic;
 use crate::rough_conductor::RoughConductor;
+use crate::rough_dielectric::RoughDielectric;
 use crate::thin_dielectric::ThinDielectric;
 use crate::two_sided::TwoSided;
 use glam::{Vec2, Vec3};
@@ -42,6 +43,8 @@ pub enum Bsdf {
     RoughConductor(RoughConductor),
     /// Smooth glass-like interface (Mitsuba's `dielectric`).
     Dielectric(Dielectric),
+    /// Rough glass-like interface, a microfacet model (Mitsuba's `roughdielectric`).
+    RoughDielectric(RoughDielectric),
     /// A thin pane of glass, reflecting and letting light straight through (Mitsuba's
     /// `thindielectric`).
     ThinDielectric(ThinDielectric),
@@ -60,6 +63,7 @@ impl Bsdf {
             Self::Diffuse(b) => b.eval(wo, wi),
             Self::RoughConductor(b) => b.eval(wo, wi),
             Self::Plastic(b) => b.eval(wo, wi),
+            Self::RoughDielectric(b) => b.eval(wo, wi),
             Self::TwoSided(b) => b.eval(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => Vec3::ZERO,
         }
@@ -73,6 +77,7 @@ impl Bsdf {
             Self::Diffuse(b) => b.pdf_solid_angle(wo, wi),
             Self::RoughConductor(b) => b.pdf_solid_angle(wo, wi),
             Self::Plastic(b) => b.pdf_solid_angle(wo, wi),
+            Self::RoughDielectric(b) => b.pdf_solid_angle(wo, wi),
             Self::TwoSided(b) => b.pdf_solid_angle(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => 0.0,
         }
@@ -86,17 +91,19 @@ impl Bsdf {
             Self::Diffuse(b) => b.eval_with_pdf(wo, wi),
             Self::RoughConductor(b) => b.eval_with_pdf(wo, wi),
             Self::Plastic(b) => b.eval_with_pdf(wo, wi),
+            Self::RoughDielectric(b) => b.eval_with_pdf(wo, wi),
             Self::TwoSided(b) => b.eval_with_pdf(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => (Vec3::ZERO, 0.0),
         }
     }
 
     /// Whether the BSDF has a glossy lobe, whose reflection depends strongly on the direction
-    /// without being a delta (a rough conductor, or a twosided with one on either side): where
+    /// without being a delta (a rough conductor or dielectric, or a twosided with one on either
+    /// side): where
     /// [`Self::lobe_weight`] is given.
     pub fn is_glossy(&self) -> bool {
         match self {
-            Self::RoughConductor(_) => true,
+            Self::RoughConductor(_) | Self::RoughDielectric(_) => true,
             Self::TwoSided(b) => b.front().is_glossy() || b.back().is_glossy(),
             Self::Diffuse(_)
             | Self::Conductor(_)
@@ -114,6 +121,7 @@ impl Bsdf {
     pub fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
         match self {
             Self::RoughConductor(b) => Some(b.lobe_weight(wo, wi)),
+            Self::RoughDielectric(b) => Some(b.lobe_weight(wo, wi)),
             Self::TwoSided(b) => b.lobe_weight(wo, wi),
             Self::Diffuse(_)
             | Self::Conductor(_)
@@ -136,6 +144,7 @@ impl Bsdf {
             Self::Dielectric(b) => b.sample(wo, u_lobe),
             Self::ThinDielectric(b) => b.sample(wo, u_lobe),
             Self::Plastic(b) => b.sample(wo, u_lobe, u_dir),
+            Self::RoughDielectric(b) => b.sample(wo, u_lobe, u_dir),
             Self::TwoSided(b) => b.sample(wo, u_lobe, u_dir),
         }
     }
@@ -151,7 +160,7 @@ impl Bsdf {
             Self::ThinDielectric(b) => b.sample(wo, u_lobe),
             Self::Plastic(b) => b.sample_specular(wo),
             Self::TwoSided(b) => b.sample_delta(wo, u_lobe),
-            Self::Diffuse(_) | Self::RoughConductor(_) => None,
+            Self::Diffuse(_) | Self::RoughConductor(_) | Self::RoughDielectric(_) => None,
         }
     }
 
@@ -167,6 +176,7 @@ impl Bsdf {
             | Self::Conductor(_)
             | Self::RoughConductor(_)
             | Self::Dielectric(_)
+            | Self::RoughDielectric(_)
             | Self::ThinDielectric(_) => false,
         }
     }
@@ -179,7 +189,10 @@ impl Bsdf {
     pub fn is_delta(&self) -> bool {
         match self {
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => true,
-            Self::Diffuse(_) | Self::RoughConductor(_) | Self::Plastic(_) => false,
+            Self::Diffuse(_)
+            | Self::RoughConductor(_)
+            | Self::RoughDielectric(_)
+            | Self::Plastic(_) => false,
             Self::TwoSided(b) => b.is_delta(),
         }
     }
@@ -200,16 +213,20 @@ impl Bsdf {
     #[inline]
     pub fn uses_lobe_choice(&self) -> bool {
         match self {
-            Self::Dielectric(_) | Self::ThinDielectric(_) | Self::Plastic(_) => true,
+            Self::Dielectric(_)
+            | Self::RoughDielectric(_)
+            | Self::ThinDielectric(_)
+            | Self::Plastic(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
             Self::TwoSided(b) => b.front().uses_lobe_choice() || b.back().uses_lobe_choice(),
         }
     }
 
-    /// Whether light can pass to the other side of the surface (a dielectric, thin or not).
+    /// Whether light can pass to the other side of the surface (a dielectric, thin, rough or
+    /// smooth).
     pub fn has_transmission(&self) -> bool {
         match self {
-            Self::Dielectric(_) | Self::ThinDielectric(_) => true,
+            Self::Dielectric(_) | Self::RoughDielectric(_) | Self::ThinDielectric(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) | Self::Plastic(_) => {
                 false
             }
@@ -229,6 +246,7 @@ impl Bsdf {
             Self::Conductor(b) => b.reflectance(1.0),
             Self::RoughConductor(b) => b.normal_reflectance(),
             Self::Dielectric(b) => b.normal_albedo(),
+            Self::RoughDielectric(b) => b.normal_albedo(),
             Self::ThinDielectric(b) => b.normal_albedo(),
             Self::Plastic(b) => b.normal_albedo(),
             Self::TwoSided(b) => 0.5 * (b.front().albedo_hint() + b.back().albedo_hint()),
@@ -257,6 +275,12 @@ impl From<RoughConductor> for Bsdf {
 impl From<Dielectric> for Bsdf {
     fn from(b: Dielectric) -> Self {
         Self::Dielectric(b)
+    }
+}
+
+impl From<RoughDielectric> for Bsdf {
+    fn from(b: RoughDielectric) -> Self {
+        Self::RoughDielectric(b)
     }
 }
 

@@ -165,6 +165,14 @@ pub fn refract(w: Vec3, cos_theta_t: f32, eta_ti: f32) -> Vec3 {
     Vec3::new(-eta_ti * w.x, -eta_ti * w.y, cos_theta_t)
 }
 
+/// Refraction of `w` through a microfacet with unit normal `m` (either side), given
+/// `cos_theta_t` and `eta_ti` from [`fresnel_dielectric`] of `w · m`: the unit vector on the
+/// other side of the facet (Mitsuba's `refract(wi, m, cos_theta_t, eta_ti)`).
+#[inline]
+pub fn refract_about(w: Vec3, m: Vec3, cos_theta_t: f32, eta_ti: f32) -> Vec3 {
+    m * (w.dot(m) * eta_ti + cos_theta_t) - w * eta_ti
+}
+
 /// Componentwise `sqrt` that treats tiny negative rounding error as zero.
 #[inline]
 fn safe_sqrt3(v: Vec3) -> Vec3 {

@@ -14,12 +14,14 @@ mod fixtures;
 
 use fixtures::{ALPHAS, INCIDENCE_DEGREES, gold, incidence, rough_conductor};
 use glam::{Vec2, Vec3};
-use materials::{Bsdf, ComplexIor, Diffuse, MicrofacetKind, Plastic, TwoSided};
+use materials::{
+    Bsdf, ComplexIor, Diffuse, Microfacet, MicrofacetKind, Plastic, RoughDielectric, TwoSided,
+};
 use sampling::Rng;
 use sampling::chi2::{Chi2Config, Chi2Domain, Chi2Outcome, chi2_test};
 
 /// Number of (BSDF, wo) cases tested for goodness of fit in this file.
-const CASES: u32 = 27;
+const CASES: u32 = 33;
 
 /// Family-wise significance level over all cases.
 const FAMILY_SIGNIFICANCE: f64 = 0.01;
@@ -160,6 +162,71 @@ fn plastic_diffuse_lobe_matches_pdf() {
             incidence(*degrees),
             40 + i as u32,
         );
+    }
+}
+
+/// A rough dielectric of `kind`, `alpha` and relative index `eta` (clear).
+fn rough_glass(kind: MicrofacetKind, alpha: f32, eta: f32) -> Bsdf {
+    let distribution = Microfacet::new(kind, alpha).expect("finite roughness");
+    let glass = RoughDielectric::new(distribution, eta, 1.0, Vec3::ONE, Vec3::ONE);
+    Bsdf::from(glass.expect("valid ior"))
+}
+
+#[test]
+fn rough_dielectric_sampling_matches_pdf() {
+    // Reflection and refraction together over the whole sphere, from outside and from inside
+    // (at 60 degrees from inside glass of index 1.5, beyond the critical angle of 41.8 degrees,
+    // most microfacets reflect totally), for both distributions.
+    let below = |degrees: f32| {
+        let w = incidence(degrees);
+        Vec3::new(w.x, w.y, -w.z)
+    };
+    let cases = [
+        (
+            "GGX 0.3, eta 1.5, 30 degrees above",
+            MicrofacetKind::Ggx,
+            0.3,
+            1.5,
+            incidence(30.0),
+        ),
+        (
+            "GGX 0.3, eta 1.5, 60 degrees below",
+            MicrofacetKind::Ggx,
+            0.3,
+            1.5,
+            below(60.0),
+        ),
+        (
+            "GGX 0.1, eta 1.33, 80 degrees above",
+            MicrofacetKind::Ggx,
+            0.1,
+            1.33,
+            incidence(80.0),
+        ),
+        (
+            "Beckmann 0.1, eta 1.5, 45 degrees above",
+            MicrofacetKind::Beckmann,
+            0.1,
+            1.5,
+            incidence(45.0),
+        ),
+        (
+            "Beckmann 0.5, eta 1.5, 20 degrees below",
+            MicrofacetKind::Beckmann,
+            0.5,
+            1.5,
+            below(20.0),
+        ),
+        (
+            "Beckmann 0.3, eta 1/1.5, 10 degrees above",
+            MicrofacetKind::Beckmann,
+            0.3,
+            1.0 / 1.5,
+            incidence(10.0),
+        ),
+    ];
+    for (i, (name, kind, alpha, eta, wo)) in cases.into_iter().enumerate() {
+        assert_fits(name, &rough_glass(kind, alpha, eta), wo, 50 + i as u32);
     }
 }
 

@@ -11,7 +11,7 @@ use materials::LOBE_WEIGHT_FLOOR;
 use materials::fresnel::{fresnel_conductor, reflect};
 use materials::{
     Bsdf, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind,
-    Plastic, ThinDielectric, TwoSided,
+    Plastic, RoughDielectric, ThinDielectric, TwoSided,
 };
 use sampling::Rng;
 use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
@@ -80,6 +80,17 @@ fn all_bsdfs() -> Vec<(String, Bsdf)> {
     let plastic = Bsdf::from(
         Plastic::new(1.49, 1.0, Vec3::new(0.9, 0.4, 0.1), Vec3::ONE, true).expect("valid ior"),
     );
+    for kind in [MicrofacetKind::Ggx, MicrofacetKind::Beckmann] {
+        for (alpha, eta) in [(0.05, 1.5), (0.3, 1.0 / 1.33), (0.8, 2.4), (1e-4, 1.5)] {
+            let distribution = Microfacet::new(kind, alpha).expect("finite roughness");
+            let rough_glass = RoughDielectric::new(distribution, eta, 1.0, Vec3::ONE, Vec3::ONE)
+                .expect("valid ior");
+            all.push((
+                format!("rough glass {kind:?} {alpha} eta {eta}"),
+                Bsdf::from(rough_glass),
+            ));
+        }
+    }
     all.push(("plastic".to_string(), plastic.clone()));
     all.push(("twosided plastic".to_string(), two_sided(plastic.clone())));
     all.push((

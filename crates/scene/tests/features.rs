@@ -5,8 +5,8 @@ mod common;
 use common::{close, data_dir, load, triangle_normal, wrap, write_scene};
 use glam::{Vec2, Vec3};
 use scene::{
-    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc, SamplerDesc,
-    SamplerKind, SceneDesc, SphereDesc,
+    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
+    MicrofacetDistribution, SamplerDesc, SamplerKind, SceneDesc, SphereDesc,
 };
 
 fn ok(name: &str, text: &str) -> SceneDesc {
@@ -156,6 +156,41 @@ fn thin_dielectric_parameters() {
     );
     assert!(
         matches!(desc.bsdfs[2], BsdfDesc::ThinDielectric { int_ior, ext_ior, .. } if int_ior == 1.2 && ext_ior == 1.2)
+    );
+}
+
+/// `roughdielectric` reads Mitsuba's defaults (Beckmann, α 0.1, bk7 in air, clear), the
+/// distribution, roughness, named indices and both multipliers.
+#[test]
+fn rough_dielectric_parameters() {
+    let desc = ok(
+        "frosted.xml",
+        &wrap(
+            "<bsdf type=\"roughdielectric\"/>
+<bsdf type=\"roughdielectric\"><string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"0.3\"/><string name=\"int_ior\" value=\"water\"/><string name=\"ext_ior\" value=\"vacuum\"/><rgb name=\"specular_transmittance\" value=\"0.5, 0.6, 0.7\"/><float name=\"specular_reflectance\" value=\"0.25\"/><boolean name=\"sample_visible\" value=\"false\"/></bsdf>",
+        ),
+    );
+    assert_eq!(
+        desc.bsdfs[0],
+        BsdfDesc::RoughDielectric {
+            distribution: MicrofacetDistribution::Beckmann,
+            alpha: 0.1,
+            int_ior: 1.5046,
+            ext_ior: 1.000277,
+            specular_reflectance: Vec3::ONE,
+            specular_transmittance: Vec3::ONE,
+        }
+    );
+    assert_eq!(
+        desc.bsdfs[1],
+        BsdfDesc::RoughDielectric {
+            distribution: MicrofacetDistribution::Ggx,
+            alpha: 0.3,
+            int_ior: 1.333,
+            ext_ior: 1.0,
+            specular_reflectance: Vec3::splat(0.25),
+            specular_transmittance: Vec3::new(0.5, 0.6, 0.7),
+        }
     );
 }
 

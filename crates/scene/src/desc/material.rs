@@ -55,6 +55,21 @@ pub enum BsdfDesc {
         /// Multiplier on transmission, each channel in [0, 1] (default 1).
         specular_transmittance: Vec3,
     },
+    /// `roughdielectric`: a rough glass-like interface, reflecting and refracting by microfacets.
+    RoughDielectric {
+        /// Microfacet distribution (default Beckmann).
+        distribution: MicrofacetDistribution,
+        /// Roughness α (default 0.1), positive.
+        alpha: f32,
+        /// Index of refraction inside (on the side opposite the normal), default bk7 = 1.5046.
+        int_ior: f32,
+        /// Index of refraction outside, default air = 1.000277.
+        ext_ior: f32,
+        /// Multiplier on reflection, each channel in [0, 1] (default 1).
+        specular_reflectance: Vec3,
+        /// Multiplier on transmission, each channel in [0, 1] (default 1).
+        specular_transmittance: Vec3,
+    },
     /// `thindielectric`: a thin pane of a dielectric, reflecting and letting light straight
     /// through.
     ThinDielectric {

@@ -1,5 +1,5 @@
-//! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, thindielectric, plastic and twosided,
-//! plus the table of BSDFs
+//! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
+//! plastic and twosided, plus the table of BSDFs
 //! that shapes index and `<ref id>` resolves into.
 
 use std::collections::HashMap;
@@ -12,11 +12,12 @@ use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
 /// The BSDF plugins this loader understands.
-const SUPPORTED: [&str; 7] = [
+const SUPPORTED: [&str; 8] = [
     "diffuse",
     "conductor",
     "roughconductor",
     "dielectric",
+    "roughdielectric",
     "thindielectric",
     "plastic",
     "twosided",
@@ -162,16 +163,21 @@ impl<'a> BsdfTable<'a> {
                 }
             }
             "dielectric" => {
-                let int_ior = ior(&mut params, "int_ior", 1.5046)?;
-                let ext_ior = ior(&mut params, "ext_ior", 1.000277)?;
-                if int_ior == ext_ior {
-                    return Err(node
-                        .loc
-                        .error("the interior and exterior indices of refraction must differ"));
-                }
+                let (int_ior, ext_ior) = distinct_iors(&mut params)?;
                 BsdfDesc::Dielectric {
-                    int_ior: int_ior as f32,
-                    ext_ior: ext_ior as f32,
+                    int_ior,
+                    ext_ior,
+                    specular_reflectance: specular_reflectance(&mut params)?,
+                    specular_transmittance: specular_transmittance(&mut params)?,
+                }
+            }
+            "roughdielectric" => {
+                let (int_ior, ext_ior) = distinct_iors(&mut params)?;
+                BsdfDesc::RoughDielectric {
+                    distribution: distribution(&mut params)?,
+                    alpha: alpha(&mut params)?,
+                    int_ior,
+                    ext_ior,
                     specular_reflectance: specular_reflectance(&mut params)?,
                     specular_transmittance: specular_transmittance(&mut params)?,
                 }
@@ -225,9 +231,10 @@ impl<'a> BsdfTable<'a> {
             match bsdf {
                 BsdfDesc::TwoSided { .. }
                 | BsdfDesc::Dielectric { .. }
+                | BsdfDesc::RoughDielectric { .. }
                 | BsdfDesc::ThinDielectric { .. } => {
                     return Err(child_loc(child).error(
-                        "twosided can only wrap one-sided reflective BSDFs (not twosided, dielectric or thindielectric)",
+                        "twosided can only wrap one-sided reflective BSDFs (not twosided, dielectric, roughdielectric or thindielectric)",
                     ));
                 }
                 bsdf => sides.push(bsdf),
@@ -355,6 +362,19 @@ fn specular_transmittance(params: &mut Params) -> Result<glam::Vec3> {
         ColorKind::Reflectance,
         1.0,
     )
+}
+
+/// A solid dielectric's `int_ior` and `ext_ior` (defaults bk7 and air), which must differ as
+/// Mitsuba requires.
+fn distinct_iors(params: &mut Params) -> Result<(f32, f32)> {
+    let int_ior = ior(params, "int_ior", 1.5046)?;
+    let ext_ior = ior(params, "ext_ior", 1.000277)?;
+    if int_ior == ext_ior {
+        return Err(params
+            .loc()
+            .error("the interior and exterior indices of refraction must differ"));
+    }
+    Ok((int_ior as f32, ext_ior as f32))
 }
 
 /// An index of refraction given as a number or as one of Mitsuba's material names.
