@@ -6,6 +6,7 @@ use crate::diffuse::Diffuse;
 use crate::plastic::Plastic;
 use crate::rough_conductor::RoughConductor;
 use crate::rough_dielectric::RoughDielectric;
+use crate::rough_plastic::RoughPlastic;
 use crate::thin_dielectric::ThinDielectric;
 use crate::two_sided::TwoSided;
 use glam::{Vec2, Vec3};
@@ -51,6 +52,9 @@ pub enum Bsdf {
     /// A diffuse base under a smooth dielectric coating (Mitsuba's `plastic`): a delta lobe
     /// and a diffuse one.
     Plastic(Plastic),
+    /// A diffuse base under a rough dielectric coating (Mitsuba's `roughplastic`): a glossy
+    /// lobe and a diffuse one.
+    RoughPlastic(RoughPlastic),
     /// A reflecting BSDF seen the same from both sides (Mitsuba's `twosided`).
     TwoSided(TwoSided),
 }
@@ -64,6 +68,7 @@ impl Bsdf {
             Self::RoughConductor(b) => b.eval(wo, wi),
             Self::Plastic(b) => b.eval(wo, wi),
             Self::RoughDielectric(b) => b.eval(wo, wi),
+            Self::RoughPlastic(b) => b.eval(wo, wi),
             Self::TwoSided(b) => b.eval(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => Vec3::ZERO,
         }
@@ -78,6 +83,7 @@ impl Bsdf {
             Self::RoughConductor(b) => b.pdf_solid_angle(wo, wi),
             Self::Plastic(b) => b.pdf_solid_angle(wo, wi),
             Self::RoughDielectric(b) => b.pdf_solid_angle(wo, wi),
+            Self::RoughPlastic(b) => b.pdf_solid_angle(wo, wi),
             Self::TwoSided(b) => b.pdf_solid_angle(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => 0.0,
         }
@@ -92,18 +98,19 @@ impl Bsdf {
             Self::RoughConductor(b) => b.eval_with_pdf(wo, wi),
             Self::Plastic(b) => b.eval_with_pdf(wo, wi),
             Self::RoughDielectric(b) => b.eval_with_pdf(wo, wi),
+            Self::RoughPlastic(b) => b.eval_with_pdf(wo, wi),
             Self::TwoSided(b) => b.eval_with_pdf(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => (Vec3::ZERO, 0.0),
         }
     }
 
     /// Whether the BSDF has a glossy lobe, whose reflection depends strongly on the direction
-    /// without being a delta (a rough conductor or dielectric, or a twosided with one on either
-    /// side): where
+    /// without being a delta (a rough conductor, dielectric or plastic, or a twosided with one on
+    /// either side): where
     /// [`Self::lobe_weight`] is given.
     pub fn is_glossy(&self) -> bool {
         match self {
-            Self::RoughConductor(_) | Self::RoughDielectric(_) => true,
+            Self::RoughConductor(_) | Self::RoughDielectric(_) | Self::RoughPlastic(_) => true,
             Self::TwoSided(b) => b.front().is_glossy() || b.back().is_glossy(),
             Self::Diffuse(_)
             | Self::Conductor(_)
@@ -122,6 +129,7 @@ impl Bsdf {
         match self {
             Self::RoughConductor(b) => Some(b.lobe_weight(wo, wi)),
             Self::RoughDielectric(b) => Some(b.lobe_weight(wo, wi)),
+            Self::RoughPlastic(b) => Some(b.lobe_weight(wo, wi)),
             Self::TwoSided(b) => b.lobe_weight(wo, wi),
             Self::Diffuse(_)
             | Self::Conductor(_)
@@ -145,6 +153,7 @@ impl Bsdf {
             Self::ThinDielectric(b) => b.sample(wo, u_lobe),
             Self::Plastic(b) => b.sample(wo, u_lobe, u_dir),
             Self::RoughDielectric(b) => b.sample(wo, u_lobe, u_dir),
+            Self::RoughPlastic(b) => b.sample(wo, u_lobe, u_dir),
             Self::TwoSided(b) => b.sample(wo, u_lobe, u_dir),
         }
     }
@@ -160,7 +169,10 @@ impl Bsdf {
             Self::ThinDielectric(b) => b.sample(wo, u_lobe),
             Self::Plastic(b) => b.sample_specular(wo),
             Self::TwoSided(b) => b.sample_delta(wo, u_lobe),
-            Self::Diffuse(_) | Self::RoughConductor(_) | Self::RoughDielectric(_) => None,
+            Self::Diffuse(_)
+            | Self::RoughConductor(_)
+            | Self::RoughDielectric(_)
+            | Self::RoughPlastic(_) => None,
         }
     }
 
@@ -177,6 +189,7 @@ impl Bsdf {
             | Self::RoughConductor(_)
             | Self::Dielectric(_)
             | Self::RoughDielectric(_)
+            | Self::RoughPlastic(_)
             | Self::ThinDielectric(_) => false,
         }
     }
@@ -192,6 +205,7 @@ impl Bsdf {
             Self::Diffuse(_)
             | Self::RoughConductor(_)
             | Self::RoughDielectric(_)
+            | Self::RoughPlastic(_)
             | Self::Plastic(_) => false,
             Self::TwoSided(b) => b.is_delta(),
         }
@@ -216,7 +230,8 @@ impl Bsdf {
             Self::Dielectric(_)
             | Self::RoughDielectric(_)
             | Self::ThinDielectric(_)
-            | Self::Plastic(_) => true,
+            | Self::Plastic(_)
+            | Self::RoughPlastic(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
             Self::TwoSided(b) => b.front().uses_lobe_choice() || b.back().uses_lobe_choice(),
         }
@@ -227,9 +242,11 @@ impl Bsdf {
     pub fn has_transmission(&self) -> bool {
         match self {
             Self::Dielectric(_) | Self::RoughDielectric(_) | Self::ThinDielectric(_) => true,
-            Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) | Self::Plastic(_) => {
-                false
-            }
+            Self::Diffuse(_)
+            | Self::Conductor(_)
+            | Self::RoughConductor(_)
+            | Self::Plastic(_)
+            | Self::RoughPlastic(_) => false,
             Self::TwoSided(b) => b.front().has_transmission() || b.back().has_transmission(),
         }
     }
@@ -249,6 +266,7 @@ impl Bsdf {
             Self::RoughDielectric(b) => b.normal_albedo(),
             Self::ThinDielectric(b) => b.normal_albedo(),
             Self::Plastic(b) => b.normal_albedo(),
+            Self::RoughPlastic(b) => b.normal_albedo(),
             Self::TwoSided(b) => 0.5 * (b.front().albedo_hint() + b.back().albedo_hint()),
         }
     }
@@ -293,6 +311,12 @@ impl From<ThinDielectric> for Bsdf {
 impl From<Plastic> for Bsdf {
     fn from(b: Plastic) -> Self {
         Self::Plastic(b)
+    }
+}
+
+impl From<RoughPlastic> for Bsdf {
+    fn from(b: RoughPlastic) -> Self {
+        Self::RoughPlastic(b)
     }
 }
 

@@ -220,6 +220,40 @@ impl Microfacet {
     }
 }
 
+impl Microfacet {
+    /// The fraction of light arriving from `wo` (above the surface) that a rough dielectric
+    /// interface of relative index `eta` with this distribution reflects (`reflect`) or
+    /// refracts to the other side: the mean over the normals m visible from `wo` of F(wo·m)
+    /// (or 1 − F) times the masking G1 of the direction leaving m. Integrated over the visible
+    /// normal sampler's unit square by `n` × `n` Gauss–Legendre points, as Mitsuba's
+    /// `eval_reflectance` and `eval_transmittance` are (its `roughplastic` tables come from them).
+    pub fn interface_albedo(&self, wo: Vec3, eta: f32, reflect: bool, n: usize) -> f32 {
+        let rule = crate::quadrature::gauss_legendre_unit(n);
+        let mut sum = 0.0_f64;
+        for &(x, wx) in &rule {
+            for &(y, wy) in &rule {
+                let Some((m, _)) = self.sample_visible_normal(wo, Vec2::new(x as f32, y as f32))
+                else {
+                    continue;
+                };
+                let fresnel = crate::fresnel::fresnel_dielectric(wo.dot(m), eta);
+                let (wi, share) = if reflect {
+                    (crate::fresnel::reflect_about(wo, m), fresnel.reflectance)
+                } else {
+                    let wi =
+                        crate::fresnel::refract_about(wo, m, fresnel.cos_theta_t, fresnel.eta_ti);
+                    (wi, 1.0 - fresnel.reflectance)
+                };
+                let right_side = if reflect { wi.z > 0.0 } else { wi.z < 0.0 };
+                if right_side {
+                    sum += wx * wy * f64::from(share * self.smith_g1(wi, m));
+                }
+            }
+        }
+        sum as f32
+    }
+}
+
 /// Slopes of visible normals of the unit-roughness Beckmann surface seen at `cos_theta_i`
 /// (Jakob 2014, "An Improved Visible Normal Sampling Routine for the Beckmann Distribution"):
 /// the slope CDF is inverted in the erf domain by three Newton steps from an analytic guess.

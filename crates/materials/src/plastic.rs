@@ -57,21 +57,15 @@ impl Plastic {
         } else {
             diffuse_reflectance / (1.0 - internal)
         };
-        let specular_mean = specular_reflectance.element_sum() / 3.0;
-        let diffuse_mean = diffuse_reflectance.element_sum() / 3.0;
-        // Mitsuba's weight is 0/0 for a black material; either choice is then right.
-        let means = diffuse_mean + specular_mean;
-        let specular_sampling_weight = if means > 0.0 {
-            specular_mean / means
-        } else {
-            0.5
-        };
         Ok(Self {
             eta,
             inv_eta_sqr: 1.0 / (eta * eta),
             base_through_coating,
             specular_reflectance,
-            specular_sampling_weight,
+            specular_sampling_weight: specular_sampling_weight(
+                diffuse_reflectance,
+                specular_reflectance,
+            ),
         })
     }
 
@@ -175,5 +169,22 @@ impl Plastic {
             is_delta: false,
             eta: 1.0,
         })
+    }
+}
+
+/// Mitsuba's `specular_sampling_weight` of a coated diffuse material: the mean of the specular
+/// multiplier over RGB divided by the sum of that mean and the base's mean albedo; ½ for a
+/// black material (Mitsuba's 0/0, where either choice is right).
+pub(crate) fn specular_sampling_weight(
+    diffuse_reflectance: Vec3,
+    specular_reflectance: Vec3,
+) -> f32 {
+    let specular_mean = specular_reflectance.element_sum() / 3.0;
+    let diffuse_mean = diffuse_reflectance.element_sum() / 3.0;
+    let means = diffuse_mean + specular_mean;
+    if means > 0.0 {
+        specular_mean / means
+    } else {
+        0.5
     }
 }

@@ -15,13 +15,14 @@ mod fixtures;
 use fixtures::{ALPHAS, INCIDENCE_DEGREES, gold, incidence, rough_conductor};
 use glam::{Vec2, Vec3};
 use materials::{
-    Bsdf, ComplexIor, Diffuse, Microfacet, MicrofacetKind, Plastic, RoughDielectric, TwoSided,
+    Bsdf, ComplexIor, Diffuse, Microfacet, MicrofacetKind, Plastic, RoughDielectric, RoughPlastic,
+    TwoSided,
 };
 use sampling::Rng;
 use sampling::chi2::{Chi2Config, Chi2Domain, Chi2Outcome, chi2_test};
 
 /// Number of (BSDF, wo) cases tested for goodness of fit in this file.
-const CASES: u32 = 33;
+const CASES: u32 = 35;
 
 /// Family-wise significance level over all cases.
 const FAMILY_SIGNIFICANCE: f64 = 0.01;
@@ -227,6 +228,29 @@ fn rough_dielectric_sampling_matches_pdf() {
     ];
     for (i, (name, kind, alpha, eta, wo)) in cases.into_iter().enumerate() {
         assert_fits(name, &rough_glass(kind, alpha, eta), wo, 50 + i as u32);
+    }
+}
+
+#[test]
+fn rough_plastic_sampling_matches_pdf() {
+    // The mixture of the glossy and the diffuse lobe, near normal and at a grazing angle where
+    // the coating reflects most of the light and the glossy lobe takes most samples.
+    for (i, (kind, alpha, degrees)) in [
+        (MicrofacetKind::Ggx, 0.2_f32, 30.0_f32),
+        (MicrofacetKind::Beckmann, 0.1, 75.0),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let distribution = Microfacet::new(kind, alpha).expect("finite roughness");
+        let plastic =
+            RoughPlastic::new(distribution, 1.49, 1.0, Vec3::splat(0.4), Vec3::ONE, false);
+        assert_fits(
+            &format!("{kind:?} {alpha} rough plastic at {degrees} degrees"),
+            &Bsdf::from(plastic.expect("valid ior")),
+            incidence(degrees),
+            60 + i as u32,
+        );
     }
 }
 

@@ -11,7 +11,7 @@ use materials::LOBE_WEIGHT_FLOOR;
 use materials::fresnel::{fresnel_conductor, reflect};
 use materials::{
     Bsdf, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind,
-    Plastic, RoughDielectric, ThinDielectric, TwoSided,
+    Plastic, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 use sampling::Rng;
 use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
@@ -42,6 +42,20 @@ fn non_delta_bsdfs() -> Vec<(String, Bsdf)> {
         all.push((
             format!("twosided {kind:?} 0.3 gold"),
             two_sided(rough_conductor(kind, 0.3, gold())),
+        ));
+        let distribution = Microfacet::new(kind, 0.2).expect("finite roughness");
+        let rough_plastic = RoughPlastic::new(
+            distribution,
+            1.49,
+            1.0,
+            Vec3::new(0.8, 0.3, 0.1),
+            Vec3::new(1.0, 0.9, 0.8),
+            kind == MicrofacetKind::Ggx,
+        )
+        .expect("valid ior");
+        all.push((
+            format!("{kind:?} 0.2 rough plastic"),
+            Bsdf::from(rough_plastic),
         ));
         all.push((
             format!("twosided diffuse / {kind:?} 0.3 gold"),

@@ -196,6 +196,21 @@ fn plastic() {
     check_scene("../tests/crosscheck/plastic.xml", EASY);
 }
 
+/// Mitsuba's `roughplastic` (a glossy coating over a diffuse base, seen directly and through
+/// the twosided wrapper), from the Mitsuba crosscheck scenes, every roughness at 0.3.
+#[test]
+fn rough_plastic() {
+    check_scene_with(
+        "../tests/crosscheck/rough-plastic.xml",
+        &[
+            ("floor_alpha", "0.3"),
+            ("ball_alpha", "0.3"),
+            ("card_alpha", "0.3"),
+        ],
+        EASY,
+    );
+}
+
 /// Mitsuba's `roughdielectric` (reflection and refraction by microfacets, seen through, lit
 /// through and lighting through), from the Mitsuba crosscheck scenes, every roughness at 0.5.
 /// Uniform directions are heavy-tailed through rough refraction (where the half vector

@@ -14,7 +14,7 @@ use lights::{
 };
 use materials::{
     Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
-    RoughConductor, RoughDielectric, ThinDielectric, TwoSided,
+    RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 
 /// A scene ready to render: what light transport needs, the camera, and the description's
@@ -250,6 +250,24 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
             specular_reflectance,
             nonlinear,
         } => Plastic::new(
+            *int_ior,
+            *ext_ior,
+            *diffuse_reflectance,
+            *specular_reflectance,
+            *nonlinear,
+        )
+        .map_err(|e| e.to_string())?
+        .into(),
+        BsdfDesc::RoughPlastic {
+            distribution,
+            alpha,
+            int_ior,
+            ext_ior,
+            diffuse_reflectance,
+            specular_reflectance,
+            nonlinear,
+        } => RoughPlastic::new(
+            microfacet(*distribution, *alpha)?,
             *int_ior,
             *ext_ior,
             *diffuse_reflectance,

@@ -64,10 +64,10 @@ fn unsupported_things() {
     );
     expect(
         "unknown_bsdf.xml",
-        &wrap("<bsdf type=\"roughplastic\"/>"),
+        &wrap("<bsdf type=\"principled\"/>"),
         4,
-        "<bsdf type=\"roughplastic\">",
-        "supported: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, twosided",
+        "<bsdf type=\"principled\">",
+        "supported: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic, twosided",
     );
     expect(
         "envmap.xml",
@@ -557,6 +557,15 @@ fn references_and_parameters() {
         5,
         "alpha_u",
         "anisotropic roughness",
+    );
+    expect(
+        "rough_plastic_equal_iors.xml",
+        &wrap(
+            "<bsdf type=\"roughplastic\">\n<float name=\"int_ior\" value=\"1.0\"/>\n<float name=\"ext_ior\" value=\"1.0\"/>\n</bsdf>",
+        ),
+        4,
+        "<bsdf type=\"roughplastic\">",
+        "must differ",
     );
     expect(
         "plastic_bad_ior.xml",

@@ -233,6 +233,47 @@ fn plastic_parameters() {
     );
 }
 
+/// `roughplastic` reads Mitsuba's defaults (Beckmann, α 0.1, polypropylene in air, base 0.5,
+/// white coating, linear) and every parameter, and may sit inside `twosided`.
+#[test]
+fn rough_plastic_parameters() {
+    let desc = ok(
+        "rough_plastic.xml",
+        &wrap(
+            "<bsdf type=\"roughplastic\"/>
+<bsdf type=\"twosided\"><bsdf type=\"roughplastic\"><string name=\"distribution\" value=\"GGX\"/><float name=\"alpha\" value=\"0.25\"/><float name=\"int_ior\" value=\"1.6\"/><rgb name=\"diffuse_reflectance\" value=\"0.1, 0.2, 0.3\"/><float name=\"specular_reflectance\" value=\"0.5\"/><boolean name=\"nonlinear\" value=\"true\"/></bsdf></bsdf>",
+        ),
+    );
+    assert_eq!(
+        desc.bsdfs[0],
+        BsdfDesc::RoughPlastic {
+            distribution: MicrofacetDistribution::Beckmann,
+            alpha: 0.1,
+            int_ior: 1.49,
+            ext_ior: 1.000277,
+            diffuse_reflectance: Vec3::splat(0.5),
+            specular_reflectance: Vec3::ONE,
+            nonlinear: false,
+        }
+    );
+    let inner = BsdfDesc::RoughPlastic {
+        distribution: MicrofacetDistribution::Ggx,
+        alpha: 0.25,
+        int_ior: 1.6,
+        ext_ior: 1.000277,
+        diffuse_reflectance: Vec3::new(0.1, 0.2, 0.3),
+        specular_reflectance: Vec3::splat(0.5),
+        nonlinear: true,
+    };
+    assert_eq!(
+        desc.bsdfs[1],
+        BsdfDesc::TwoSided {
+            front: Box::new(inner.clone()),
+            back: Box::new(inner),
+        }
+    );
+}
+
 /// `spot` and `directional` read Mitsuba's defaults (cutoff 20°, beam 3/4 of it; +z) and place
 /// themselves by `to_world` or `direction`.
 #[test]

@@ -96,6 +96,23 @@ pub enum BsdfDesc {
         /// default false).
         nonlinear: bool,
     },
+    /// `roughplastic`: a diffuse base under a rough dielectric coating.
+    RoughPlastic {
+        /// Microfacet distribution of the coating (default Beckmann).
+        distribution: MicrofacetDistribution,
+        /// Roughness α of the coating (default 0.1), positive.
+        alpha: f32,
+        /// Index of refraction of the coating, default polypropylene = 1.49.
+        int_ior: f32,
+        /// Index of refraction outside, default air = 1.000277.
+        ext_ior: f32,
+        /// Albedo of the base, each channel in [0, 1] (default 0.5).
+        diffuse_reflectance: Vec3,
+        /// Multiplier on the coating's reflection, each channel in [0, 1] (default 1).
+        specular_reflectance: Vec3,
+        /// Whether internal scattering shifts the base's colour (default false).
+        nonlinear: bool,
+    },
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.
     TwoSided {

@@ -1,5 +1,5 @@
 //! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
-//! plastic and twosided, plus the table of BSDFs
+//! plastic, roughplastic and twosided, plus the table of BSDFs
 //! that shapes index and `<ref id>` resolves into.
 
 use std::collections::HashMap;
@@ -12,7 +12,7 @@ use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
 /// The BSDF plugins this loader understands.
-const SUPPORTED: [&str; 8] = [
+const SUPPORTED: [&str; 9] = [
     "diffuse",
     "conductor",
     "roughconductor",
@@ -20,6 +20,7 @@ const SUPPORTED: [&str; 8] = [
     "roughdielectric",
     "thindielectric",
     "plastic",
+    "roughplastic",
     "twosided",
 ];
 
@@ -163,7 +164,7 @@ impl<'a> BsdfTable<'a> {
                 }
             }
             "dielectric" => {
-                let (int_ior, ext_ior) = distinct_iors(&mut params)?;
+                let (int_ior, ext_ior) = distinct_iors(&mut params, 1.5046)?;
                 BsdfDesc::Dielectric {
                     int_ior,
                     ext_ior,
@@ -172,7 +173,7 @@ impl<'a> BsdfTable<'a> {
                 }
             }
             "roughdielectric" => {
-                let (int_ior, ext_ior) = distinct_iors(&mut params)?;
+                let (int_ior, ext_ior) = distinct_iors(&mut params, 1.5046)?;
                 BsdfDesc::RoughDielectric {
                     distribution: distribution(&mut params)?,
                     alpha: alpha(&mut params)?,
@@ -200,6 +201,23 @@ impl<'a> BsdfTable<'a> {
                 specular_reflectance: specular_reflectance(&mut params)?,
                 nonlinear: params.boolean_or("nonlinear", false)?,
             },
+            "roughplastic" => {
+                let (int_ior, ext_ior) = distinct_iors(&mut params, 1.49)?;
+                BsdfDesc::RoughPlastic {
+                    distribution: distribution(&mut params)?,
+                    alpha: alpha(&mut params)?,
+                    int_ior,
+                    ext_ior,
+                    diffuse_reflectance: rgb(
+                        &mut params,
+                        "diffuse_reflectance",
+                        ColorKind::Reflectance,
+                        0.5,
+                    )?,
+                    specular_reflectance: specular_reflectance(&mut params)?,
+                    nonlinear: params.boolean_or("nonlinear", false)?,
+                }
+            }
             _ => return Err(unknown_type(node, &SUPPORTED)),
         };
         params.finish()?;
@@ -364,10 +382,10 @@ fn specular_transmittance(params: &mut Params) -> Result<glam::Vec3> {
     )
 }
 
-/// A solid dielectric's `int_ior` and `ext_ior` (defaults bk7 and air), which must differ as
-/// Mitsuba requires.
-fn distinct_iors(params: &mut Params) -> Result<(f32, f32)> {
-    let int_ior = ior(params, "int_ior", 1.5046)?;
+/// An interface's `int_ior` (default `int_default`) and `ext_ior` (default air), which must
+/// differ as Mitsuba requires of its solid and rough dielectrics and rough plastic.
+fn distinct_iors(params: &mut Params, int_default: f64) -> Result<(f32, f32)> {
+    let int_ior = ior(params, "int_ior", int_default)?;
     let ext_ior = ior(params, "ext_ior", 1.000277)?;
     if int_ior == ext_ior {
         return Err(params
