@@ -158,7 +158,9 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         Some(SamplerFlag::Sobol) => SamplerKind::Sobol,
         None => match desc.sampler.kind {
             SceneSampler::Independent => SamplerKind::Independent,
-            SceneSampler::Stratified | SceneSampler::Multijitter => SamplerKind::Stratified,
+            SceneSampler::Stratified | SceneSampler::Multijitter | SceneSampler::Orthogonal => {
+                SamplerKind::Stratified
+            }
             // Mitsuba's `ldsampler` is a scrambled (0, 2)-sequence with per-dimension shuffles.
             SceneSampler::Ldsampler => SamplerKind::Sobol,
         },

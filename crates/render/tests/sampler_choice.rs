@@ -25,6 +25,7 @@ fn scene_samplers_map_to_the_nearest_strata_sampler() {
         ("independent", SamplerKind::Independent),
         ("stratified", SamplerKind::Stratified),
         ("multijitter", SamplerKind::Stratified),
+        ("orthogonal", SamplerKind::Stratified),
         // Mitsuba's ldsampler: a scrambled (0, 2)-sequence with per-dimension index shuffles.
         ("ldsampler", SamplerKind::Sobol),
     ] {

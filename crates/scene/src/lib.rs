@@ -20,10 +20,13 @@
 //!   `float integer boolean string point vector rgb spectrum transform` (a `<spectrum>` must be a
 //!   single value), and `translate rotate scale lookat matrix` inside `<transform>`, composed in
 //!   document order.
-//! - `integrator`: path, direct. `sensor`: perspective, thinlens. `film`: hdrfilm.
-//!   `rfilter`: box, tent, gaussian. `sampler`: independent, stratified, multijitter, ldsampler.
-//!   `shape`: obj, ply, rectangle, cube, disk, sphere. `bsdf`: diffuse, conductor,
-//!   roughconductor, dielectric, twosided. `emitter`: area (in a shape), point, constant.
+//! - `integrator`: path (and volpath, volpathmis: the path tracer, since no scene Strata reads
+//!   has media), direct. `sensor`: perspective, thinlens. `film`: hdrfilm. `rfilter`: box,
+//!   tent, gaussian, mitchell, catmullrom, lanczos. `sampler`: independent, stratified,
+//!   multijitter, ldsampler, orthogonal. `shape`: obj, ply, rectangle, cube, disk, sphere.
+//!   `bsdf`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
+//!   plastic, roughplastic, twosided. `emitter`: area (in a shape), point, spot, directional,
+//!   constant.
 //!
 //! Anything else — an unknown element, plugin or parameter, a malformed value, a missing mesh —
 //! is a [`LoadError`] naming the file, line, column and element, never silently ignored.

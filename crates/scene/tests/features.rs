@@ -583,6 +583,39 @@ fn sampler_counts_follow_mitsuba_rounding() {
         64
     );
     assert_eq!(sampler(SamplerKind::Ldsampler, 1).mitsuba_sample_count(), 4);
+    // Orthogonal arrays: the square of the next prime (4 is 2², 10 rounds to 5², 26 to 7²).
+    for (spp, expected) in [(4, 4), (5, 9), (9, 9), (10, 25), (26, 49)] {
+        assert_eq!(
+            sampler(SamplerKind::Orthogonal, spp).mitsuba_sample_count(),
+            expected,
+            "orthogonal {spp}"
+        );
+    }
+}
+
+/// `volpath` and `volpathmis` read as the path tracer with the same parameters (Strata reads no
+/// media, and without media Mitsuba's volumetric path tracers are its path tracer).
+#[test]
+fn volumetric_path_tracers_are_the_path_tracer() {
+    for plugin in ["volpath", "volpathmis"] {
+        let text = wrap("").replace(
+            "<integrator type=\"path\"/>",
+            &format!(
+                "<integrator type=\"{plugin}\"><integer name=\"max_depth\" value=\"7\"/><integer name=\"rr_depth\" value=\"3\"/><boolean name=\"hide_emitters\" value=\"true\"/></integrator>"
+            ),
+        );
+        let desc = ok(&format!("{plugin}.xml"), &text);
+        assert_eq!(desc.integrator.kind, IntegratorKind::Path, "{plugin}");
+        assert_eq!(
+            (
+                desc.integrator.max_depth,
+                desc.integrator.rr_depth,
+                desc.integrator.hide_emitters
+            ),
+            (7, 3, true),
+            "{plugin}"
+        );
+    }
 }
 
 #[test]

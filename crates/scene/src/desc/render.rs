@@ -164,6 +164,9 @@ pub enum SamplerKind {
     Multijitter,
     /// `ldsampler`: a low-discrepancy (0,2)-sequence.
     Ldsampler,
+    /// `orthogonal`: an orthogonal array (Jarosz et al. 2019), generalising multi-jittered
+    /// sampling to higher dimensions.
+    Orthogonal,
 }
 
 /// The `<sampler>` element.
@@ -180,7 +183,8 @@ pub struct SamplerDesc {
 
 impl SamplerDesc {
     /// The samples per pixel Mitsuba renders with: `stratified` rounds up to a square,
-    /// `multijitter` to a near-square product and `ldsampler` to a square of a power of two.
+    /// `multijitter` to a near-square product, `ldsampler` to a square of a power of two and
+    /// `orthogonal` to the square of a prime.
     pub fn mitsuba_sample_count(&self) -> u64 {
         let spp = u64::from(self.sample_count);
         match self.kind {
@@ -201,6 +205,19 @@ impl SamplerDesc {
                 let mut res = 2u64;
                 while res * res < spp {
                     res = (res + 1).next_power_of_two();
+                }
+                res * res
+            }
+            SamplerKind::Orthogonal => {
+                let is_prime = |x: u64| {
+                    x >= 2
+                        && (2..)
+                            .take_while(|d| d * d <= x)
+                            .all(|d| !x.is_multiple_of(d))
+                };
+                let mut res = 2u64;
+                while res * res < spp || !is_prime(res) {
+                    res += 1;
                 }
                 res * res
             }

@@ -1,4 +1,5 @@
-//! `<integrator type="path">` and `<integrator type="direct">`.
+//! `<integrator type="path">` (and `volpath`, `volpathmis`, which are the path tracer in scenes
+//! without participating media, the only scenes Strata reads) and `<integrator type="direct">`.
 
 use super::{no_children, unknown_type};
 use crate::desc::{IntegratorDesc, IntegratorKind};
@@ -15,7 +16,7 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
     no_children(node)?;
     let mut params = Params::new(node);
     let desc = match node.plugin.as_str() {
-        "path" => IntegratorDesc {
+        "path" | "volpath" | "volpathmis" => IntegratorDesc {
             kind: IntegratorKind::Path,
             max_depth: params.integer_in("max_depth", -1, -1, i64::from(i32::MAX))? as i32,
             rr_depth: params.integer_in("rr_depth", DEFAULT_RR_DEPTH, 1, i64::from(u32::MAX))?
@@ -28,7 +29,12 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
             rr_depth: DEFAULT_RR_DEPTH as u32,
             hide_emitters: params.boolean_or("hide_emitters", false)?,
         },
-        _ => return Err(unknown_type(node, &["path", "direct"])),
+        _ => {
+            return Err(unknown_type(
+                node,
+                &["path", "volpath", "volpathmis", "direct"],
+            ));
+        }
     };
     params.finish()?;
     Ok(desc)

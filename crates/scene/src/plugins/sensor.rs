@@ -320,15 +320,28 @@ fn sampler_desc(node: &ObjectNode) -> Result<SamplerDesc> {
         "stratified" => SamplerKind::Stratified,
         "multijitter" => SamplerKind::Multijitter,
         "ldsampler" => SamplerKind::Ldsampler,
+        "orthogonal" => SamplerKind::Orthogonal,
         _ => {
             return Err(unknown_type(
                 node,
-                &["independent", "stratified", "multijitter", "ldsampler"],
+                &[
+                    "independent",
+                    "stratified",
+                    "multijitter",
+                    "ldsampler",
+                    "orthogonal",
+                ],
             ));
         }
     };
-    if matches!(kind, SamplerKind::Stratified | SamplerKind::Multijitter)
-        && !params.boolean_or("jitter", true)?
+    if kind == SamplerKind::Orthogonal {
+        // The array's strength changes only how the dimensions are stratified together.
+        params.integer_in("strength", 2, 2, 64)?;
+    }
+    if matches!(
+        kind,
+        SamplerKind::Stratified | SamplerKind::Multijitter | SamplerKind::Orthogonal
+    ) && !params.boolean_or("jitter", true)?
     {
         return Err(params
             .loc_of("jitter")
