@@ -147,7 +147,8 @@ impl PathIntegrator {
             };
             let Some(surface) = found else {
                 if !hidden {
-                    radiance += self.background_found(world, &previous, ONE_EACH, throughput);
+                    radiance +=
+                        self.background_found(world, ray.dir, &previous, ONE_EACH, throughput);
                 }
                 break;
             };
@@ -282,30 +283,31 @@ impl PathIntegrator {
                     counts,
                     weight,
                 ),
-                None => self.background_found(world, &previous, counts, weight),
+                None => self.background_found(world, ray.dir, &previous, counts, weight),
             };
         }
         radiance
     }
 
-    /// The environment's radiance found by a ray that left `previous`, times `throughput` and
-    /// its MIS weight.
+    /// The environment's radiance found by a ray that left `previous` in the unit direction
+    /// `dir`, times `throughput` and its MIS weight.
     #[inline(always)]
     fn background_found(
         &self,
         world: &World,
+        dir: Vec3,
         previous: &PreviousVertex,
         counts: StrategyCounts,
         throughput: Vec3,
     ) -> Vec3 {
-        let background = world.background();
+        let background = world.background(dir);
         if background == Vec3::ZERO {
             return Vec3::ZERO;
         }
         let weight = self.emission_weight(previous, world.environment(), counts, || {
             world
                 .environment()
-                .map_or(0.0, |e| world.lights()[e as usize].pdf_li_environment())
+                .map_or(0.0, |e| world.lights()[e as usize].pdf_li_environment(dir))
         });
         throughput * background * weight
     }

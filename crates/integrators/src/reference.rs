@@ -63,7 +63,7 @@ pub fn radiance(
         };
         let Some(surface) = found else {
             if !hidden {
-                radiance += throughput * world.background();
+                radiance += throughput * world.background(ray.dir);
             }
             break;
         };

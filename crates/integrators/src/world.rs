@@ -89,7 +89,7 @@ impl World {
             return Err(format!("light {l} out of range ({} lights)", lights.len()));
         }
         let environments: Vec<u32> = (0..lights.len() as u32)
-            .filter(|&i| matches!(lights[i as usize], Light::Environment(_)))
+            .filter(|&i| lights[i as usize].is_environment())
             .collect();
         if environments.len() > 1 {
             return Err("more than one environment emitter".to_string());
@@ -266,11 +266,11 @@ impl World {
         })
     }
 
-    /// Radiance arriving along a ray that escapes the scene.
+    /// Radiance arriving along a ray that escapes the scene in the unit direction `dir`.
     #[inline]
-    pub fn background(&self) -> Vec3 {
+    pub fn background(&self, dir: Vec3) -> Vec3 {
         self.environment.map_or(Vec3::ZERO, |e| {
-            self.lights[e as usize].radiance_from_direction()
+            self.lights[e as usize].radiance_from_direction(dir)
         })
     }
 }

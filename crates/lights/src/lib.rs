@@ -9,12 +9,13 @@
 //! Conventions follow Mitsuba 3: area emitters are one-sided and emit on the side their
 //! geometric normal points to; a point light has intensity in W/sr (a spot light on its axis); a
 //! directional light has irradiance in W/m²; a constant environment emits the same radiance from
-//! every direction.
+//! every direction, an environment map the radiance of a latitude-longitude image.
 
 mod area_sample;
 mod directional;
 mod emission;
 mod environment;
+mod environment_map;
 mod light;
 mod mesh_area;
 mod point;
@@ -26,6 +27,7 @@ mod spot;
 pub use directional::DirectionalLight;
 pub use emission::EmissionSample;
 pub use environment::ConstantEnvironment;
+pub use environment_map::{EnvironmentMap, EnvironmentMapError};
 pub use light::Light;
 pub use mesh_area::MeshAreaLight;
 pub use point::PointLight;

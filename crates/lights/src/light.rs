@@ -1,8 +1,8 @@
 //! The closed set of emitter types, dispatched by enum.
 
 use crate::{
-    ConstantEnvironment, DirectionalLight, EmissionSample, LightSample, MeshAreaLight, PointLight,
-    SphereAreaLight, SpotLight, mean_rgb,
+    ConstantEnvironment, DirectionalLight, EmissionSample, EnvironmentMap, LightSample,
+    MeshAreaLight, PointLight, SphereAreaLight, SpotLight, mean_rgb,
 };
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -22,6 +22,8 @@ pub enum Light {
     Directional(DirectionalLight),
     /// Constant environment.
     Environment(ConstantEnvironment),
+    /// Environment map: radiance from infinitely far away, varying with direction.
+    EnvironmentMap(EnvironmentMap),
 }
 
 impl Light {
@@ -36,6 +38,7 @@ impl Light {
             Light::Spot(l) => l.sample_li(p),
             Light::Directional(l) => Some(l.sample_li(p)),
             Light::Environment(l) => l.sample_li(p, u),
+            Light::EnvironmentMap(l) => l.sample_li(p, u),
         }
     }
 
@@ -47,9 +50,11 @@ impl Light {
         match self {
             Light::Mesh(l) => l.sample_emission(u_point, u_dir),
             Light::Sphere(l) => l.sample_emission(u_point, u_dir),
-            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => {
-                None
-            }
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Directional(_)
+            | Light::Environment(_)
+            | Light::EnvironmentMap(_) => None,
         }
     }
 
@@ -60,9 +65,11 @@ impl Light {
         let radiance = match self {
             Light::Mesh(l) => l.radiance(),
             Light::Sphere(l) => l.radiance,
-            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => {
-                return Vec3::ZERO;
-            }
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Directional(_)
+            | Light::Environment(_)
+            | Light::EnvironmentMap(_) => return Vec3::ZERO,
         };
         // Area emitters are one-sided: they emit on the side their geometric normal points to.
         if ng.dot(w) > 0.0 {
@@ -72,12 +79,13 @@ impl Light {
         }
     }
 
-    /// Radiance arriving along a ray that escapes the scene in any direction: the environment's
-    /// radiance, zero for every other light.
+    /// Radiance arriving along a ray that escapes the scene in the unit direction `w` (pointing
+    /// away from the scene): the environment's radiance, zero for every other light.
     #[inline]
-    pub fn radiance_from_direction(&self) -> Vec3 {
+    pub fn radiance_from_direction(&self, w: Vec3) -> Vec3 {
         match self {
             Light::Environment(l) => l.radiance,
+            Light::EnvironmentMap(l) => l.radiance(w),
             _ => Vec3::ZERO,
         }
     }
@@ -90,18 +98,30 @@ impl Light {
         match self {
             Light::Mesh(l) => l.pdf_li(p, p_light, n_light),
             Light::Sphere(l) => l.pdf_li(p, p_light, n_light),
-            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => 0.0,
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Directional(_)
+            | Light::Environment(_)
+            | Light::EnvironmentMap(_) => 0.0,
         }
     }
 
-    /// Density per steradian with which [`Self::sample_li`] picks a direction that escapes the
-    /// scene: the environment's density, zero for every other light.
+    /// Density per steradian with which [`Self::sample_li`] picks the unit direction `w` that
+    /// escapes the scene: the environment's density, zero for every other light.
     #[inline]
-    pub fn pdf_li_environment(&self) -> f32 {
+    pub fn pdf_li_environment(&self, w: Vec3) -> f32 {
         match self {
             Light::Environment(l) => l.pdf_li(),
+            Light::EnvironmentMap(l) => l.pdf_li(w),
             _ => 0.0,
         }
+    }
+
+    /// Whether the light is an environment (constant or a map), which rays that escape the
+    /// scene see.
+    #[inline]
+    pub fn is_environment(&self) -> bool {
+        matches!(self, Light::Environment(_) | Light::EnvironmentMap(_))
     }
 
     /// True for lights that a randomly sampled ray can never hit (point, spot and directional
@@ -122,19 +142,20 @@ impl Light {
             Light::Sphere(l) => Some((l.center, l.radius)),
             Light::Point(l) => Some((l.position, 0.0)),
             Light::Spot(l) => Some((l.position(), 0.0)),
-            Light::Directional(_) | Light::Environment(_) => None,
+            Light::Directional(_) | Light::Environment(_) | Light::EnvironmentMap(_) => None,
         }
     }
 
     /// Irradiance (W m⁻², mean over channels) that the light could deliver at most, roughly, to a
     /// surface at `p` with unit normal `n`, either side: power / (4π max(d², r²)) for a light
     /// inside a sphere of radius r at distance d, times a bound on |cos θ| over that sphere; π
-    /// times the radiance for the environment; for spot and directional lights the irradiance
+    /// times the (mean) radiance for the environment; for spot and directional lights the irradiance
     /// itself (falloff and |cos θ| included). Zero only where the light cannot reach `p`'s
     /// tangent plane from either side; the target of resampled light selection.
     pub fn irradiance_estimate(&self, p: Vec3, n: Vec3) -> f32 {
         match self {
             Light::Environment(l) => return PI * mean_rgb(l.radiance),
+            Light::EnvironmentMap(l) => return PI * l.mean_radiance(),
             Light::Directional(l) => return l.irradiance() * l.towards_light().dot(n).abs(),
             Light::Spot(l) => {
                 let cos = (l.position() - p).normalize_or_zero().dot(n).abs();
@@ -165,6 +186,7 @@ impl Light {
             Light::Spot(l) => l.power(),
             Light::Directional(l) => l.power(),
             Light::Environment(l) => l.power(),
+            Light::EnvironmentMap(l) => l.power(),
         }
     }
 }

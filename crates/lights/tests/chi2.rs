@@ -15,17 +15,18 @@
 //! Fixed seeds; α = 0.01 over the [`CASES`] cases of this file, Šidák-corrected by the harness. A
 //! failure prints the harness report (seed, counts, worst bins) to replay it.
 
+use glam::Mat3;
 use glam::{DVec3, Vec2, Vec3};
 use lights::{
-    ConstantEnvironment, Light, LightSelection, LightSelector, MeshAreaLight, PointLight,
-    SphereAreaLight,
+    ConstantEnvironment, EnvironmentMap, Light, LightSelection, LightSelector, MeshAreaLight,
+    PointLight, SphereAreaLight,
 };
 use sampling::Rng;
 use sampling::chi2::{Chi2Config, Chi2Domain, chi2_discrete, chi2_test};
 use std::f64::consts::PI;
 
 /// Number of chi-square tests in this file, sharing the family-wise significance level.
-const CASES: u32 = 8;
+const CASES: u32 = 10;
 
 /// Family-wise significance level over all cases.
 const FAMILY_SIGNIFICANCE: f64 = 0.01;
@@ -340,9 +341,49 @@ fn constant_environment_matches_pdf() {
         "constant environment",
         &light,
         p,
-        |_| light.pdf_li_environment(),
+        |wi| light.pdf_li_environment(wi),
         &config(6, 200_000, 16),
     );
+}
+
+/// A 16 × 9 map: a dim sky with a bright 1-texel sun, a black band and a brighter horizon row.
+fn sky_texels() -> Vec<Vec3> {
+    let (w, h) = (16, 9);
+    (0..w * h)
+        .map(|k| {
+            let (i, j) = (k / w, k % w);
+            match (i, j) {
+                (2, 11) => Vec3::new(40.0, 35.0, 30.0),
+                (6, _) => Vec3::ZERO,
+                (4, _) => Vec3::new(1.0, 0.8, 0.6),
+                _ => Vec3::new(0.1, 0.2, 0.4 + 0.02 * j as f32),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn environment_map_matches_pdf() {
+    // The map's own frame and a rotated one (a quarter turn about x and a tilt about y), so
+    // that the poles and the seam at u = 0 lie where the sphere's bins do not expect them.
+    let rotated = Mat3::from_rotation_y(0.4) * Mat3::from_rotation_x(std::f32::consts::FRAC_PI_2);
+    for (i, (name, to_world)) in [
+        ("environment map", Mat3::IDENTITY),
+        ("rotated map", rotated),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let map = EnvironmentMap::new(16, 9, &sky_texels(), 1.5, to_world, 2.0).expect("valid");
+        let light = Light::EnvironmentMap(map);
+        assert_fits(
+            name,
+            &light,
+            Vec3::new(1.0, 2.0, -3.0),
+            |wi| light.pdf_li_environment(wi),
+            &config(11 + i as u32, 1_000_000, 64),
+        );
+    }
 }
 
 /// Lights whose powers span nearly three orders of magnitude (0.06 W to 49 W), one of them black (power 0).

@@ -9,8 +9,8 @@ use crate::{
 use geometry::{Accel, Shape, Sphere, TriangleMesh};
 use integrators::World;
 use lights::{
-    ConstantEnvironment, DirectionalLight, Light, MeshAreaLight, PointLight, SphereAreaLight,
-    SpotLight,
+    ConstantEnvironment, DirectionalLight, EnvironmentMap, Light, MeshAreaLight, PointLight,
+    SphereAreaLight, SpotLight,
 };
 use materials::{
     Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
@@ -108,6 +108,17 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
                 radiance,
                 scene_radius,
             }),
+            EmitterDesc::EnvMap {
+                width,
+                height,
+                ref texels,
+                scale,
+                to_world,
+                ..
+            } => Light::EnvironmentMap(
+                EnvironmentMap::new(width, height, texels, scale, to_world, scene_radius)
+                    .map_err(|e| error("scene".to_string(), format!("envmap: {e}")))?,
+            ),
         });
         light_weights.push(emitter.sampling_weight());
     }

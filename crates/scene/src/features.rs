@@ -42,7 +42,7 @@ impl SceneFeatures {
                 .iter()
                 .filter(|l| matches!(l, Light::Mesh(_) | Light::Sphere(_)))
                 .count(),
-            has_environment: lights.iter().any(|l| matches!(l, Light::Environment(_))),
+            has_environment: lights.iter().any(Light::is_environment),
             has_glossy_bsdfs: materials.iter().any(Bsdf::is_glossy),
         }
     }

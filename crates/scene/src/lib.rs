@@ -26,7 +26,7 @@
 //!   multijitter, ldsampler, orthogonal. `shape`: obj, ply, rectangle, cube, disk, sphere.
 //!   `bsdf`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
 //!   plastic, roughplastic, twosided. `emitter`: area (in a shape), point, spot, directional,
-//!   constant.
+//!   constant, envmap (OpenEXR images).
 //!
 //! Anything else — an unknown element, plugin or parameter, a malformed value, a missing mesh —
 //! is a [`LoadError`] naming the file, line, column and element, never silently ignored.
@@ -47,6 +47,7 @@ mod camera;
 mod cie_tables;
 mod desc;
 mod error;
+mod exr_image;
 mod features;
 mod ior;
 pub mod limits;

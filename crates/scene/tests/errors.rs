@@ -70,13 +70,29 @@ fn unsupported_things() {
         "supported: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic, twosided",
     );
     expect(
-        "envmap.xml",
+        "envmap_missing.xml",
         &wrap(
-            "<emitter type=\"envmap\">\n<string name=\"filename\" value=\"sky.exr\"/>\n</emitter>",
+            "<emitter type=\"envmap\">\n<string name=\"filename\" value=\"no-such-sky.exr\"/>\n</emitter>",
         ),
+        5,
+        "<string name=\"filename\"",
+        "not found",
+    );
+    expect(
+        "envmap_png.xml",
+        &wrap(
+            "<emitter type=\"envmap\">\n<string name=\"filename\" value=\"sky.png\"/>\n</emitter>",
+        ),
+        5,
+        "<string name=\"filename\"",
+        "only OpenEXR",
+    );
+    expect(
+        "envmap_no_file.xml",
+        &wrap("<emitter type=\"envmap\">\n<float name=\"scale\" value=\"2\"/>\n</emitter>"),
         4,
         "<emitter type=\"envmap\">",
-        "not supported",
+        "missing required parameter \"filename\"",
     );
     expect(
         "directional_both.xml",

@@ -274,6 +274,54 @@ fn rough_plastic_parameters() {
     );
 }
 
+/// `envmap` reads its OpenEXR image (here the crosscheck's 64 × 32 sky, whose 2 × 2-texel sun
+/// is at rows 6–7, columns 20–21), `scale` and `to_world`; an unreadable file is an error that
+/// names it.
+#[test]
+fn environment_map_parameters() {
+    let sky =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/crosscheck/sky.exr");
+    let desc = ok(
+        "envmap.xml",
+        &wrap(&format!(
+            "<emitter type=\"envmap\"><string name=\"filename\" value=\"{}\"/><float name=\"scale\" value=\"0.5\"/><transform name=\"to_world\"><rotate y=\"1\" angle=\"90\"/></transform><boolean name=\"mis_compensation\" value=\"true\"/></emitter>",
+            sky.display()
+        )),
+    );
+    let EmitterDesc::EnvMap {
+        width,
+        height,
+        texels,
+        scale,
+        to_world,
+        sampling_weight,
+    } = &desc.emitters[0]
+    else {
+        panic!("an environment map: {:?}", desc.emitters[0]);
+    };
+    assert_eq!(
+        (*width, *height, *scale, *sampling_weight),
+        (64, 32, 0.5, 1.0)
+    );
+    assert!(close(
+        texels[6 * 64 + 20],
+        Vec3::new(120.0, 105.0, 90.0),
+        1e-3
+    ));
+    assert!(close(*to_world * Vec3::X, -Vec3::Z, 1e-6), "{to_world}");
+    let not_an_image = write_scene("not_an_image.exr", "plain text");
+    let text = wrap(&format!(
+        "<emitter type=\"envmap\"><string name=\"filename\" value=\"{}\"/></emitter>",
+        not_an_image.display()
+    ));
+    let path = write_scene("bad_envmap.xml", &text);
+    let err = scene::parse_file(&path, &[]).expect_err("not an EXR file");
+    assert!(
+        err.message.contains("cannot read environment map") && err.message.contains("not_an_image"),
+        "{err}"
+    );
+}
+
 /// `spot` and `directional` read Mitsuba's defaults (cutoff 20°, beam 3/4 of it; +z) and place
 /// themselves by `to_world` or `direction`.
 #[test]

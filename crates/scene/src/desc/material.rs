@@ -145,7 +145,7 @@ pub struct AreaEmitterDesc {
 }
 
 /// A light that is not attached to a shape.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum EmitterDesc {
     /// `point`: an isotropic point light.
     Point {
@@ -189,6 +189,23 @@ pub enum EmitterDesc {
         /// Selection weight, as [`AreaEmitterDesc::sampling_weight`].
         sampling_weight: f32,
     },
+    /// `envmap`: radiance at infinity from a latitude-longitude image (read from its
+    /// `filename` when the scene is parsed).
+    EnvMap {
+        /// Texels per row of the image.
+        width: u32,
+        /// Rows of the image.
+        height: u32,
+        /// Linear RGB radiance, W/(m²·sr) per channel, row-major from the top row.
+        texels: Vec<Vec3>,
+        /// Multiplier on the image (default 1).
+        scale: f32,
+        /// The linear part of `to_world`, which turns the map's frame (+y up) into the world's
+        /// (default identity).
+        to_world: Mat3,
+        /// Selection weight, as [`AreaEmitterDesc::sampling_weight`].
+        sampling_weight: f32,
+    },
 }
 
 impl EmitterDesc {
@@ -205,6 +222,9 @@ impl EmitterDesc {
                 sampling_weight, ..
             }
             | EmitterDesc::Constant {
+                sampling_weight, ..
+            }
+            | EmitterDesc::EnvMap {
                 sampling_weight, ..
             } => sampling_weight,
         }

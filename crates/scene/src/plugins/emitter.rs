@@ -1,4 +1,4 @@
-//! `<emitter>`: area (inside a shape), point, spot, directional and constant.
+//! `<emitter>`: area (inside a shape), point, spot, directional, constant and envmap.
 
 use glam::{DMat3, DVec3};
 
@@ -7,9 +7,6 @@ use crate::desc::{AreaEmitterDesc, EmitterDesc};
 use crate::error::Result;
 use crate::params::{ColorKind, Params};
 use crate::xml::tree::ObjectNode;
-
-/// Emitter plugins accepted at the top level of a scene.
-const SCENE_EMITTERS: [&str; 4] = ["point", "spot", "directional", "constant"];
 
 /// Interprets an `<emitter>` nested in a `<shape>`; only `area` is allowed there.
 pub(crate) fn area_emitter(node: &ObjectNode) -> Result<AreaEmitterDesc> {
@@ -74,12 +71,7 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
                 .loc
                 .error("an area emitter must be nested inside the <shape> that emits"));
         }
-        "envmap" => {
-            return Err(node.loc.error(format!(
-                "emitter type \"envmap\" is not supported yet (supported: {})",
-                SCENE_EMITTERS.join(", ")
-            )));
-        }
+        "envmap" => envmap(&mut params)?,
         _ => {
             return Err(unknown_type(
                 node,
@@ -88,6 +80,7 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
                     "spot",
                     "directional",
                     "constant",
+                    "envmap",
                     "area (inside a shape)",
                 ],
             ));
@@ -95,6 +88,61 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
     };
     params.finish()?;
     Ok(emitter)
+}
+
+/// `envmap`: an OpenEXR latitude-longitude image named by `filename` (relative to the scene
+/// file), with `scale` and `to_world`; Mitsuba's `mis_compensation` changes only how the map
+/// is sampled and is accepted without effect.
+fn envmap(params: &mut Params) -> Result<EmitterDesc> {
+    if params.has("bitmap") {
+        return Err(params
+            .loc_of("bitmap")
+            .error("an environment map given as a nested bitmap is not supported; use filename"));
+    }
+    let (filename, loc) = params.string("filename")?.ok_or_else(|| {
+        params
+            .loc()
+            .error("missing required parameter \"filename\"")
+    })?;
+    let dir = loc.file.parent().unwrap_or(std::path::Path::new(""));
+    let path = dir.join(filename);
+    let is_exr = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    if !is_exr {
+        return Err(loc.error(format!(
+            "environment map \"{}\": only OpenEXR (.exr) images are supported",
+            path.display()
+        )));
+    }
+    if !path.is_file() {
+        return Err(loc.error(format!("environment map \"{}\" not found", path.display())));
+    }
+    let image = crate::exr_image::read_rgb(&path).map_err(|e| {
+        loc.error(format!(
+            "cannot read environment map \"{}\": {e}",
+            path.display()
+        ))
+    })?;
+    let scale = params.float_or("scale", 1.0)?;
+    if !(scale.is_finite() && scale >= 0.0) {
+        return Err(params.loc_of("scale").error(format!(
+            "\"scale\" must be a finite non-negative number, got {scale}"
+        )));
+    }
+    params.boolean_or("mis_compensation", false)?;
+    let to_world = params
+        .transform("to_world")?
+        .unwrap_or(glam::DMat4::IDENTITY);
+    let to_world = glam::DMat3::from_mat4(to_world).as_mat3();
+    Ok(EmitterDesc::EnvMap {
+        width: image.width,
+        height: image.height,
+        texels: image.texels,
+        scale: scale as f32,
+        to_world,
+        sampling_weight: sampling_weight(params)?,
+    })
 }
 
 /// `spot`: placed and aimed by `to_world` (+z is the axis), with Mitsuba's `cutoff_angle`
