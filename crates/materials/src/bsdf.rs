@@ -1,5 +1,6 @@
 //! The closed set of BSDFs as one enum, and what sampling one returns.
 
+use crate::blend::Blend;
 use crate::conductor::Conductor;
 use crate::dielectric::Dielectric;
 use crate::diffuse::Diffuse;
@@ -57,6 +58,8 @@ pub enum Bsdf {
     RoughPlastic(RoughPlastic),
     /// A reflecting BSDF seen the same from both sides (Mitsuba's `twosided`).
     TwoSided(TwoSided),
+    /// Two BSDFs blended by a constant weight (Mitsuba's `blendbsdf`).
+    Blend(Blend),
 }
 
 impl Bsdf {
@@ -70,6 +73,7 @@ impl Bsdf {
             Self::RoughDielectric(b) => b.eval(wo, wi),
             Self::RoughPlastic(b) => b.eval(wo, wi),
             Self::TwoSided(b) => b.eval(wo, wi),
+            Self::Blend(b) => b.eval(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => Vec3::ZERO,
         }
     }
@@ -85,6 +89,7 @@ impl Bsdf {
             Self::RoughDielectric(b) => b.pdf_solid_angle(wo, wi),
             Self::RoughPlastic(b) => b.pdf_solid_angle(wo, wi),
             Self::TwoSided(b) => b.pdf_solid_angle(wo, wi),
+            Self::Blend(b) => b.pdf_solid_angle(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => 0.0,
         }
     }
@@ -100,6 +105,7 @@ impl Bsdf {
             Self::RoughDielectric(b) => b.eval_with_pdf(wo, wi),
             Self::RoughPlastic(b) => b.eval_with_pdf(wo, wi),
             Self::TwoSided(b) => b.eval_with_pdf(wo, wi),
+            Self::Blend(b) => b.eval_with_pdf(wo, wi),
             Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => (Vec3::ZERO, 0.0),
         }
     }
@@ -112,6 +118,7 @@ impl Bsdf {
         match self {
             Self::RoughConductor(_) | Self::RoughDielectric(_) | Self::RoughPlastic(_) => true,
             Self::TwoSided(b) => b.front().is_glossy() || b.back().is_glossy(),
+            Self::Blend(b) => b.first().is_glossy() || b.second().is_glossy(),
             Self::Diffuse(_)
             | Self::Conductor(_)
             | Self::Dielectric(_)
@@ -131,6 +138,7 @@ impl Bsdf {
             Self::RoughDielectric(b) => Some(b.lobe_weight(wo, wi)),
             Self::RoughPlastic(b) => Some(b.lobe_weight(wo, wi)),
             Self::TwoSided(b) => b.lobe_weight(wo, wi),
+            Self::Blend(b) => self.is_glossy().then(|| b.lobe_weight(wo, wi)),
             Self::Diffuse(_)
             | Self::Conductor(_)
             | Self::Dielectric(_)
@@ -155,6 +163,7 @@ impl Bsdf {
             Self::RoughDielectric(b) => b.sample(wo, u_lobe, u_dir),
             Self::RoughPlastic(b) => b.sample(wo, u_lobe, u_dir),
             Self::TwoSided(b) => b.sample(wo, u_lobe, u_dir),
+            Self::Blend(b) => b.sample(wo, u_lobe, u_dir),
         }
     }
 
@@ -169,6 +178,7 @@ impl Bsdf {
             Self::ThinDielectric(b) => b.sample(wo, u_lobe),
             Self::Plastic(b) => b.sample_specular(wo),
             Self::TwoSided(b) => b.sample_delta(wo, u_lobe),
+            Self::Blend(b) => b.sample_delta(wo, u_lobe),
             Self::Diffuse(_)
             | Self::RoughConductor(_)
             | Self::RoughDielectric(_)
@@ -184,6 +194,7 @@ impl Bsdf {
         match self {
             Self::Plastic(_) => true,
             Self::TwoSided(b) => b.front().is_mixed() || b.back().is_mixed(),
+            Self::Blend(b) => self.has_delta_lobe() && !b.is_delta(),
             Self::Diffuse(_)
             | Self::Conductor(_)
             | Self::RoughConductor(_)
@@ -208,6 +219,7 @@ impl Bsdf {
             | Self::RoughPlastic(_)
             | Self::Plastic(_) => false,
             Self::TwoSided(b) => b.is_delta(),
+            Self::Blend(b) => b.is_delta(),
         }
     }
 
@@ -217,6 +229,7 @@ impl Bsdf {
     pub fn has_delta_lobe(&self) -> bool {
         match self {
             Self::TwoSided(b) => b.front().has_delta_lobe() || b.back().has_delta_lobe(),
+            Self::Blend(b) => b.first().has_delta_lobe() || b.second().has_delta_lobe(),
             Self::Plastic(_) => true,
             _ => self.is_delta(),
         }
@@ -234,6 +247,7 @@ impl Bsdf {
             | Self::RoughPlastic(_) => true,
             Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
             Self::TwoSided(b) => b.front().uses_lobe_choice() || b.back().uses_lobe_choice(),
+            Self::Blend(_) => true,
         }
     }
 
@@ -248,6 +262,7 @@ impl Bsdf {
             | Self::Plastic(_)
             | Self::RoughPlastic(_) => false,
             Self::TwoSided(b) => b.front().has_transmission() || b.back().has_transmission(),
+            Self::Blend(b) => b.first().has_transmission() || b.second().has_transmission(),
         }
     }
 
@@ -268,6 +283,9 @@ impl Bsdf {
             Self::Plastic(b) => b.normal_albedo(),
             Self::RoughPlastic(b) => b.normal_albedo(),
             Self::TwoSided(b) => 0.5 * (b.front().albedo_hint() + b.back().albedo_hint()),
+            Self::Blend(b) => {
+                b.first().albedo_hint() * (1.0 - b.weight()) + b.second().albedo_hint() * b.weight()
+            }
         }
     }
 }
@@ -317,6 +335,12 @@ impl From<Plastic> for Bsdf {
 impl From<RoughPlastic> for Bsdf {
     fn from(b: RoughPlastic) -> Self {
         Self::RoughPlastic(b)
+    }
+}
+
+impl From<Blend> for Bsdf {
+    fn from(b: Blend) -> Self {
+        Self::Blend(b)
     }
 }
 

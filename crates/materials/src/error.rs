@@ -19,6 +19,11 @@ pub enum MaterialError {
     },
     /// `twosided` around a BSDF that transmits light, which Mitsuba also rejects.
     TransmissiveTwoSided,
+    /// A `blendbsdf` weight outside [0, 1].
+    InvalidBlendWeight {
+        /// The value given.
+        value: f32,
+    },
 }
 
 impl fmt::Display for MaterialError {
@@ -30,6 +35,9 @@ impl fmt::Display for MaterialError {
             ),
             Self::InvalidRoughness { value } => {
                 write!(f, "`alpha` must be a finite number, got {value}")
+            }
+            Self::InvalidBlendWeight { value } => {
+                write!(f, "`weight` must be in [0, 1], got {value}")
             }
             Self::TransmissiveTwoSided => write!(
                 f,

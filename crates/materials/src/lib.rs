@@ -27,6 +27,7 @@
 
 #![warn(missing_docs)]
 
+mod blend;
 mod bsdf;
 mod conductor;
 mod dielectric;
@@ -43,6 +44,7 @@ mod special;
 mod thin_dielectric;
 mod two_sided;
 
+pub use blend::Blend;
 pub use bsdf::{Bsdf, BsdfSample};
 pub use conductor::Conductor;
 pub use dielectric::Dielectric;

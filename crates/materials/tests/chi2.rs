@@ -15,14 +15,14 @@ mod fixtures;
 use fixtures::{ALPHAS, INCIDENCE_DEGREES, gold, incidence, rough_conductor};
 use glam::{Vec2, Vec3};
 use materials::{
-    Bsdf, ComplexIor, Diffuse, Microfacet, MicrofacetKind, Plastic, RoughDielectric, RoughPlastic,
-    TwoSided,
+    Blend, Bsdf, ComplexIor, Diffuse, Microfacet, MicrofacetKind, Plastic, RoughDielectric,
+    RoughPlastic, TwoSided,
 };
 use sampling::Rng;
 use sampling::chi2::{Chi2Config, Chi2Domain, Chi2Outcome, chi2_test};
 
 /// Number of (BSDF, wo) cases tested for goodness of fit in this file.
-const CASES: u32 = 35;
+const CASES: u32 = 37;
 
 /// Family-wise significance level over all cases.
 const FAMILY_SIGNIFICANCE: f64 = 0.01;
@@ -250,6 +250,36 @@ fn rough_plastic_sampling_matches_pdf() {
             &Bsdf::from(plastic.expect("valid ior")),
             incidence(degrees),
             60 + i as u32,
+        );
+    }
+}
+
+#[test]
+fn blend_sampling_matches_pdf() {
+    // A diffuse base blended with a glossy GGX metal (the mixture density), and with a plastic,
+    // whose mirror samples count as absorbed.
+    let diffuse = || Bsdf::from(Diffuse::new(Vec3::splat(0.5)));
+    let glossy = rough_conductor(MicrofacetKind::Ggx, 0.15, ComplexIor::PERFECT_MIRROR);
+    let plastic = Plastic::new(1.49, 1.0, Vec3::splat(0.3), Vec3::ONE, false).expect("valid ior");
+    let cases = [
+        (
+            "blend diffuse / GGX 0.15",
+            Blend::new(diffuse(), glossy, 0.4),
+            45.0_f32,
+        ),
+        (
+            "blend diffuse / plastic",
+            Blend::new(diffuse(), Bsdf::from(plastic), 0.6),
+            75.0,
+        ),
+    ];
+    for (i, (name, blend, degrees)) in cases.into_iter().enumerate() {
+        let bsdf = Bsdf::from(blend.expect("weight in [0, 1]"));
+        assert_fits(
+            &format!("{name} at {degrees} degrees"),
+            &bsdf,
+            incidence(degrees),
+            70 + i as u32,
         );
     }
 }

@@ -10,8 +10,8 @@ use glam::{Vec2, Vec3};
 use materials::LOBE_WEIGHT_FLOOR;
 use materials::fresnel::{fresnel_conductor, reflect};
 use materials::{
-    Bsdf, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind,
-    Plastic, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
+    Blend, Bsdf, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet,
+    MicrofacetKind, Plastic, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 use sampling::Rng;
 use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
@@ -105,6 +105,23 @@ fn all_bsdfs() -> Vec<(String, Bsdf)> {
             ));
         }
     }
+    let mirror_blend = Blend::new(
+        Bsdf::from(Diffuse::new(Vec3::splat(0.6))),
+        Bsdf::from(Conductor::new(ComplexIor::PERFECT_MIRROR, Vec3::ONE)),
+        0.7,
+    )
+    .expect("weight in [0, 1]");
+    all.push((
+        "blend diffuse / mirror".to_string(),
+        Bsdf::from(mirror_blend),
+    ));
+    let glass_blend = Blend::new(
+        Bsdf::from(Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior")),
+        Bsdf::from(Conductor::new(ComplexIor::PERFECT_MIRROR, Vec3::ONE)),
+        0.25,
+    )
+    .expect("weight in [0, 1]");
+    all.push(("blend glass / mirror".to_string(), Bsdf::from(glass_blend)));
     all.push(("plastic".to_string(), plastic.clone()));
     all.push(("twosided plastic".to_string(), two_sided(plastic.clone())));
     all.push((

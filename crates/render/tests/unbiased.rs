@@ -211,6 +211,21 @@ fn environment_map() {
     );
 }
 
+/// Mitsuba's `blendbsdf` with delta lobes among its BSDFs (a mirror, glass and a plastic each
+/// blended with a diffuse or glossy one), from the Mitsuba crosscheck scenes.
+#[test]
+fn blend() {
+    check_scene_with(
+        "../tests/crosscheck/blend.xml",
+        &[
+            ("metal", "conductor"),
+            ("glass", "dielectric"),
+            ("coat", "plastic"),
+        ],
+        EASY,
+    );
+}
+
 /// Mitsuba's `roughplastic` (a glossy coating over a diffuse base, seen directly and through
 /// the twosided wrapper), from the Mitsuba crosscheck scenes, every roughness at 0.3.
 #[test]

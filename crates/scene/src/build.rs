@@ -13,7 +13,7 @@ use lights::{
     SphereAreaLight, SpotLight,
 };
 use materials::{
-    Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
+    Blend, Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
     RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 
@@ -287,6 +287,13 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
         )
         .map_err(|e| e.to_string())?
         .into(),
+        BsdfDesc::Blend {
+            first,
+            second,
+            weight,
+        } => Blend::new(build_bsdf(first)?, build_bsdf(second)?, *weight)
+            .map_err(|e| e.to_string())?
+            .into(),
         BsdfDesc::TwoSided { front, back } => Bsdf::TwoSided(
             TwoSided::with_sides(build_bsdf(front)?, build_bsdf(back)?)
                 .map_err(|e| e.to_string())?,

@@ -25,8 +25,8 @@
 //!   tent, gaussian, mitchell, catmullrom, lanczos. `sampler`: independent, stratified,
 //!   multijitter, ldsampler, orthogonal. `shape`: obj, ply, rectangle, cube, disk, sphere.
 //!   `bsdf`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
-//!   plastic, roughplastic, twosided. `emitter`: area (in a shape), point, spot, directional,
-//!   constant, envmap (OpenEXR images).
+//!   plastic, roughplastic, twosided, blendbsdf. `emitter`: area (in a shape), point, spot,
+//!   directional, constant, envmap (OpenEXR images).
 //!
 //! Anything else — an unknown element, plugin or parameter, a malformed value, a missing mesh —
 //! is a [`LoadError`] naming the file, line, column and element, never silently ignored.

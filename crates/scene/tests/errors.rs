@@ -67,7 +67,7 @@ fn unsupported_things() {
         &wrap("<bsdf type=\"principled\"/>"),
         4,
         "<bsdf type=\"principled\">",
-        "supported: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic, twosided",
+        "supported: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic, twosided, blendbsdf",
     );
     expect(
         "envmap_missing.xml",
@@ -573,6 +573,42 @@ fn references_and_parameters() {
         5,
         "alpha_u",
         "anisotropic roughness",
+    );
+    expect(
+        "blend_one_bsdf.xml",
+        &wrap(
+            "<bsdf type=\"blendbsdf\">\n<float name=\"weight\" value=\"0.5\"/>\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+        ),
+        4,
+        "<bsdf type=\"blendbsdf\">",
+        "needs two nested BSDFs",
+    );
+    expect(
+        "blend_weight.xml",
+        &wrap(
+            "<bsdf type=\"blendbsdf\">\n<float name=\"weight\" value=\"1.5\"/>\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+        ),
+        5,
+        "<float name=\"weight\"",
+        "must be in [0, 1]",
+    );
+    expect(
+        "blend_no_weight.xml",
+        &wrap(
+            "<bsdf type=\"blendbsdf\">\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+        ),
+        4,
+        "<bsdf type=\"blendbsdf\">",
+        "missing required parameter \"weight\"",
+    );
+    expect(
+        "twosided_blend_glass.xml",
+        &wrap(
+            "<bsdf type=\"twosided\">\n<bsdf type=\"blendbsdf\">\n<float name=\"weight\" value=\"0.5\"/>\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"dielectric\"/>\n</bsdf>\n</bsdf>",
+        ),
+        5,
+        "<bsdf type=\"blendbsdf\">",
+        "includes a dielectric",
     );
     expect(
         "rough_plastic_equal_iors.xml",

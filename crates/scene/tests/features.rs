@@ -233,6 +233,34 @@ fn plastic_parameters() {
     );
 }
 
+/// `blendbsdf` reads its weight and two nested BSDFs (objects or references), and may sit inside
+/// `twosided` when both reflect.
+#[test]
+fn blend_parameters() {
+    let desc = ok(
+        "blend.xml",
+        &wrap(
+            "<bsdf type=\"conductor\" id=\"metal\"/>
+<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.3\"/><bsdf type=\"diffuse\"/><ref id=\"metal\"/></bsdf>
+<bsdf type=\"twosided\"><bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"1\"/><bsdf type=\"diffuse\"/><bsdf type=\"plastic\"/></bsdf></bsdf>",
+        ),
+    );
+    let BsdfDesc::Blend {
+        first,
+        second,
+        weight,
+    } = &desc.bsdfs[1]
+    else {
+        panic!("a blend: {:?}", desc.bsdfs[1]);
+    };
+    assert_eq!(*weight, 0.3);
+    assert_eq!(**first, BsdfDesc::default_diffuse());
+    assert_eq!(**second, desc.bsdfs[0]);
+    assert!(
+        matches!(&desc.bsdfs[2], BsdfDesc::TwoSided { front, .. } if matches!(**front, BsdfDesc::Blend { .. }))
+    );
+}
+
 /// `roughplastic` reads Mitsuba's defaults (Beckmann, α 0.1, polypropylene in air, base 0.5,
 /// white coating, linear) and every parameter, and may sit inside `twosided`.
 #[test]

@@ -113,6 +113,15 @@ pub enum BsdfDesc {
         /// Whether internal scattering shifts the base's colour (default false).
         nonlinear: bool,
     },
+    /// `blendbsdf`: `(1 − weight)` of `first` plus `weight` of `second`.
+    Blend {
+        /// The BSDF at weight 0 (the first nested one).
+        first: Box<BsdfDesc>,
+        /// The BSDF at weight 1.
+        second: Box<BsdfDesc>,
+        /// The blend weight in [0, 1].
+        weight: f32,
+    },
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.
     TwoSided {

@@ -1,5 +1,5 @@
 //! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
-//! plastic, roughplastic and twosided, plus the table of BSDFs
+//! plastic, roughplastic, twosided and blendbsdf, plus the table of BSDFs
 //! that shapes index and `<ref id>` resolves into.
 
 use std::collections::HashMap;
@@ -12,7 +12,7 @@ use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
 /// The BSDF plugins this loader understands.
-const SUPPORTED: [&str; 9] = [
+const SUPPORTED: [&str; 10] = [
     "diffuse",
     "conductor",
     "roughconductor",
@@ -22,6 +22,7 @@ const SUPPORTED: [&str; 9] = [
     "plastic",
     "roughplastic",
     "twosided",
+    "blendbsdf",
 ];
 
 /// The BSDFs of a scene, filled as shapes and references ask for them.
@@ -128,10 +129,10 @@ impl<'a> BsdfTable<'a> {
     /// value it rejects (an index of refraction too large for single precision) is reported
     /// with the element's line.
     fn interpret(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
-        let bsdf = if node.plugin == "twosided" {
-            self.twosided(node)?
-        } else {
-            self.one_sided(node)?
+        let bsdf = match node.plugin.as_str() {
+            "twosided" => self.twosided(node)?,
+            "blendbsdf" => self.blend(node)?,
+            _ => self.one_sided(node)?,
         };
         crate::build::build_bsdf(&bsdf).map_err(|message| node.loc.error(message))?;
         Ok(bsdf)
@@ -228,8 +229,41 @@ impl<'a> BsdfTable<'a> {
     fn twosided(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
         Params::new(node).finish()?;
         let mut sides = Vec::new();
+        for (child, bsdf) in self.nested(node)? {
+            match bsdf {
+                BsdfDesc::TwoSided { .. }
+                | BsdfDesc::Dielectric { .. }
+                | BsdfDesc::RoughDielectric { .. }
+                | BsdfDesc::ThinDielectric { .. } => {
+                    return Err(child_loc(child).error(
+                        "twosided can only wrap one-sided reflective BSDFs (not twosided, dielectric, roughdielectric or thindielectric)",
+                    ));
+                }
+                BsdfDesc::Blend { .. } if bsdf_has_transmission(&bsdf) => {
+                    return Err(child_loc(child).error(
+                        "twosided can only wrap reflective BSDFs; this blend includes a dielectric",
+                    ));
+                }
+                bsdf => sides.push(bsdf),
+            }
+        }
+        let mut sides = sides.into_iter();
+        let front = sides
+            .next()
+            .ok_or_else(|| node.loc.error("twosided needs a nested BSDF"))?;
+        let back = sides.next().unwrap_or_else(|| front.clone());
+        Ok(BsdfDesc::TwoSided {
+            front: Box::new(front),
+            back: Box::new(back),
+        })
+    }
+
+    /// The BSDFs nested in `node` (objects or references), each with the child it came from: one
+    /// or two, else an error at the element.
+    fn nested(&mut self, node: &'a ObjectNode) -> Result<Vec<(&'a Child, BsdfDesc)>> {
+        let mut found = Vec::new();
         for child in &node.children {
-            if sides.len() == 2 {
+            if found.len() == 2 {
                 return Err(unexpected_child(node, child, "one or two BSDFs"));
             }
             let bsdf = match child {
@@ -246,27 +280,47 @@ impl<'a> BsdfTable<'a> {
                 }
                 Child::Object(_) => return Err(unexpected_child(node, child, "one or two BSDFs")),
             };
-            match bsdf {
-                BsdfDesc::TwoSided { .. }
-                | BsdfDesc::Dielectric { .. }
-                | BsdfDesc::RoughDielectric { .. }
-                | BsdfDesc::ThinDielectric { .. } => {
-                    return Err(child_loc(child).error(
-                        "twosided can only wrap one-sided reflective BSDFs (not twosided, dielectric, roughdielectric or thindielectric)",
-                    ));
-                }
-                bsdf => sides.push(bsdf),
-            }
+            found.push((child, bsdf));
         }
-        let mut sides = sides.into_iter();
-        let front = sides
-            .next()
-            .ok_or_else(|| node.loc.error("twosided needs a nested BSDF"))?;
-        let back = sides.next().unwrap_or_else(|| front.clone());
-        Ok(BsdfDesc::TwoSided {
-            front: Box::new(front),
-            back: Box::new(back),
+        Ok(found)
+    }
+
+    /// `blendbsdf`: exactly two nested BSDFs and a constant `weight` in [0, 1] (Mitsuba's takes
+    /// a texture too, which Strata does not read).
+    fn blend(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
+        let mut params = Params::new(node);
+        let weight = params.float("weight")?.ok_or_else(|| {
+            node.loc
+                .error("missing required parameter \"weight\" (a float in [0, 1])")
+        })?;
+        if !(0.0..=1.0).contains(&weight) {
+            return Err(params
+                .loc_of("weight")
+                .error(format!("\"weight\" must be in [0, 1], got {weight}")));
+        }
+        params.finish()?;
+        let mut nested = self.nested(node)?.into_iter().map(|(_, bsdf)| bsdf);
+        let (Some(first), Some(second)) = (nested.next(), nested.next()) else {
+            return Err(node.loc.error("blendbsdf needs two nested BSDFs"));
+        };
+        Ok(BsdfDesc::Blend {
+            first: Box::new(first),
+            second: Box::new(second),
+            weight: weight as f32,
         })
+    }
+}
+
+/// Whether a BSDF description lets light through (a dielectric, possibly inside a blend).
+fn bsdf_has_transmission(desc: &BsdfDesc) -> bool {
+    match desc {
+        BsdfDesc::Dielectric { .. }
+        | BsdfDesc::RoughDielectric { .. }
+        | BsdfDesc::ThinDielectric { .. } => true,
+        BsdfDesc::Blend { first, second, .. } => {
+            bsdf_has_transmission(first) || bsdf_has_transmission(second)
+        }
+        _ => false,
     }
 }
 

@@ -1,0 +1,141 @@
+//! Mitsuba's `blendbsdf`: a linear blend of two BSDFs by a constant weight.
+
+use crate::bsdf::{Bsdf, BsdfSample};
+use crate::error::MaterialError;
+use crate::rough_conductor::LOBE_WEIGHT_FLOOR;
+use glam::{Vec2, Vec3};
+use std::f32::consts::FRAC_1_PI;
+
+/// f = (1 − w) f₀ + w f₁ for a weight w in [0, 1]: the first BSDF at w = 0, the second at 1.
+///
+/// Sampling picks the second BSDF with probability w (when `u_lobe` < w, the rest of `u_lobe`
+/// passed on) and samples it; a sample of a density lobe gets the blend's value and the
+/// mixture density (1 − w) p₀ + w p₁ (one-sample MIS, as Mitsuba's), a delta sample keeps its
+/// weight, which is the chosen BSDF's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Blend {
+    first: Box<Bsdf>,
+    second: Box<Bsdf>,
+    weight: f32,
+    is_delta: bool,
+}
+
+impl Blend {
+    /// `first` and `second` blended by `weight` (Mitsuba's `weight`, in [0, 1], else an error).
+    pub fn new(first: Bsdf, second: Bsdf, weight: f32) -> Result<Self, MaterialError> {
+        if !(0.0..=1.0).contains(&weight) {
+            return Err(MaterialError::InvalidBlendWeight { value: weight });
+        }
+        Ok(Self {
+            is_delta: first.is_delta() && second.is_delta(),
+            first: Box::new(first),
+            second: Box::new(second),
+            weight,
+        })
+    }
+
+    /// The BSDF at weight 0.
+    pub fn first(&self) -> &Bsdf {
+        &self.first
+    }
+
+    /// The BSDF at weight 1.
+    pub fn second(&self) -> &Bsdf {
+        &self.second
+    }
+
+    /// The weight of the second BSDF.
+    pub fn weight(&self) -> f32 {
+        self.weight
+    }
+
+    /// Whether both BSDFs are deltas.
+    #[inline]
+    pub fn is_delta(&self) -> bool {
+        self.is_delta
+    }
+
+    /// (1 − w) f₀ + w f₁ per steradian.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.first.eval(wo, wi) * (1.0 - self.weight) + self.second.eval(wo, wi) * self.weight
+    }
+
+    /// (1 − w) p₀ + w p₁ per steradian: the density of [`Self::sample`]'s non-delta samples.
+    pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_with_pdf(wo, wi).1
+    }
+
+    /// [`Self::eval`] and [`Self::pdf_solid_angle`] together.
+    pub fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        let (f0, p0) = self.first.eval_with_pdf(wo, wi);
+        let (f1, p1) = self.second.eval_with_pdf(wo, wi);
+        let w = self.weight;
+        (f0 * (1.0 - w) + f1 * w, p0 * (1.0 - w) + p1 * w)
+    }
+
+    /// A cheap positive estimate of f · cos θi, sr⁻¹, for resampled light choice: the blend of
+    /// the two BSDFs' lobe weights, a BSDF without one counted as Lambertian with its albedo
+    /// hint (plus [`LOBE_WEIGHT_FLOOR`]).
+    pub fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> f32 {
+        let estimate = |b: &Bsdf| {
+            b.lobe_weight(wo, wi).unwrap_or_else(|| {
+                b.albedo_hint().element_sum() / 3.0 * FRAC_1_PI * wi.z.abs() + LOBE_WEIGHT_FLOOR
+            })
+        };
+        estimate(&self.first) * (1.0 - self.weight) + estimate(&self.second) * self.weight
+    }
+
+    /// Which BSDF `u_lobe` chooses, its probability and `u_lobe` rescaled to [0, 1) within it.
+    fn choose(&self, u_lobe: f32) -> (&Bsdf, f32, f32) {
+        let w = self.weight;
+        if u_lobe < w {
+            (&self.second, w, (u_lobe / w).min(ONE_MINUS_EPSILON))
+        } else {
+            (
+                &self.first,
+                1.0 - w,
+                ((u_lobe - w) / (1.0 - w)).min(ONE_MINUS_EPSILON),
+            )
+        }
+    }
+
+    /// Samples the BSDF `u_lobe` chooses; see the type's documentation for the weights.
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        let (chosen, probability, u_rest) = self.choose(u_lobe);
+        let mut sample = chosen.sample(wo, u_rest, u_dir)?;
+        if sample.is_delta {
+            // The blend's delta lobe is `probability` times the chosen one's.
+            sample.f *= probability;
+            sample.pdf_solid_angle *= probability;
+            return Some(sample);
+        }
+        let (f, pdf) = self.eval_with_pdf(wo, sample.wi);
+        (pdf > 0.0).then_some(BsdfSample {
+            f,
+            pdf_solid_angle: pdf,
+            ..sample
+        })
+    }
+
+    /// The delta lobes alone ([`Bsdf::sample_delta`]): of the BSDF that has them, or of the one
+    /// `u_lobe` chooses when both have, weighted by its share of the blend.
+    pub fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        let (first, second) = (self.first.has_delta_lobe(), self.second.has_delta_lobe());
+        let (chosen, share, probability, u_rest) = match (first, second) {
+            (true, true) => {
+                let (chosen, probability, u_rest) = self.choose(u_lobe);
+                (chosen, probability, probability, u_rest)
+            }
+            (true, false) => (&*self.first, 1.0 - self.weight, 1.0, u_lobe),
+            (false, true) => (&*self.second, self.weight, 1.0, u_lobe),
+            (false, false) => return None,
+        };
+        let mut sample = chosen.sample_delta(wo, u_rest)?;
+        sample.f *= share;
+        sample.pdf_solid_angle *= probability;
+        Some(sample)
+    }
+}
+
+/// The largest `f32` below 1.
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
