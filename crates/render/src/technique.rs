@@ -147,7 +147,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         // `auto` traces caustics from the lights wherever that applies.
         let auto_traces = args.integrator == IntegratorPreset::Auto;
         settings.light_tracing = (args.light_tracing || auto_traces)
-            && light_tracing_applies(features, settings.max_depth)
+            && light_tracing_applies(features, settings.max_depth, !desc.sensor.orthographic)
             && !settings.hide_emitters;
     }
 
@@ -227,13 +227,19 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
 }
 
 /// Whether caustics by light tracing can find anything in the scene: a delta BSDF to make
-/// caustics and a light with a surface to trace from. Any camera (a thin lens's connections go
-/// through a sampled point of its aperture) and any reconstruction filter (a light path splats
-/// into every pixel whose camera samples can reach its film position, weighted by the filter).
+/// caustics, a light with a surface to trace from and a camera that light paths can connect to
+/// (`camera_connects`: any but the orthographic one; a thin lens's connections go through a
+/// sampled point of its aperture), with any reconstruction filter (a light path splats into
+/// every pixel whose camera samples can reach its film position, weighted by the filter).
 /// A caustic path needs three vertices after the camera (diffuse, delta, light), so none fits
 /// a `max_depth` of 2 or less.
-pub fn light_tracing_applies(features: &SceneFeatures, max_depth: Option<u32>) -> bool {
-    features.has_delta_bsdfs
+pub fn light_tracing_applies(
+    features: &SceneFeatures,
+    max_depth: Option<u32>,
+    camera_connects: bool,
+) -> bool {
+    camera_connects
+        && features.has_delta_bsdfs
         && features.has_hittable_lights()
         && max_depth.is_none_or(|depth| depth >= 3)
 }

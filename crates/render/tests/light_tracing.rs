@@ -402,4 +402,24 @@ fn auto_traces_caustics_where_they_apply() {
         !traced(&load("cbox.xml"), &[]),
         "no delta BSDF: nothing to trace"
     );
+    // An orthographic camera sees each point along one direction only: nothing connects to it.
+    let path = common::scenes_dir().join("cbox-glass.xml");
+    let text = std::fs::read_to_string(&path).expect("readable");
+    let sensor = text
+        .find("<sensor type=\"perspective\">")
+        .expect("a perspective sensor");
+    let fov_end = text[sensor..].find("/>").expect("its fov") + sensor + 2;
+    let orthographic = format!(
+        "{}<sensor type=\"orthographic\">{}",
+        &text[..sensor],
+        &text[fov_end..]
+    );
+    let desc = scene::parse_bytes(orthographic.as_bytes(), &path, &[]).expect("parses");
+    let orthographic = scene::build(desc).expect("builds");
+    assert!(!orthographic.camera.connects());
+    assert!(
+        !traced(&orthographic, &[]),
+        "auto with an orthographic camera"
+    );
+    assert!(!traced(&orthographic, &["--light-tracing"]));
 }

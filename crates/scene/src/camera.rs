@@ -1,4 +1,4 @@
-//! Mitsuba's `perspective` and `thinlens` sensors: rays from film positions.
+//! Mitsuba's `perspective`, `thinlens` and `orthographic` sensors: rays from film positions.
 
 use geometry::Ray;
 use glam::{Mat4, Vec2, Vec3};
@@ -17,8 +17,9 @@ pub struct ThinLens {
     pub focus_distance: f32,
 }
 
-/// A pinhole or thin-lens perspective camera with Mitsuba's conventions: it looks down its local
-/// +z, local +y is up, local +x is image-left, and image rows run top to bottom.
+/// A pinhole or thin-lens perspective camera, or an orthographic one, with Mitsuba's
+/// conventions: it looks down its local +z, local +y is up, local +x is image-left, and image
+/// rows run top to bottom.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     to_world: Mat4,
@@ -31,6 +32,8 @@ pub struct Camera {
     /// The principal point's offset from the film's centre, in fractions of the film's size.
     principal_point_offset: Vec2,
     lens: Option<ThinLens>,
+    /// Parallel rays from the near plane over x ∈ [−1, 1], y ∈ [−1/aspect, 1/aspect].
+    orthographic: bool,
 }
 
 impl Camera {
@@ -50,7 +53,16 @@ impl Camera {
                 aperture_radius: l.aperture_radius,
                 focus_distance: l.focus_distance,
             }),
+            orthographic: sensor.orthographic,
         }
+    }
+
+    /// True when the light tracer can connect points to the camera: every camera but the
+    /// orthographic one, which sees each point along one direction only (its importance is a
+    /// delta in direction).
+    #[inline]
+    pub fn connects(&self) -> bool {
+        !self.orthographic
     }
 
     /// True when rays depend on a lens sample (a thin lens with a non-zero aperture).
@@ -65,6 +77,9 @@ impl Camera {
     /// on the far one.
     #[inline]
     pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> CameraRay {
+        if self.orthographic {
+            return self.orthographic_ray(film);
+        }
         let ndc = (film / self.resolution + self.principal_point_offset) * 2.0 - Vec2::ONE;
         // Image right is camera -x and image down is camera -y.
         let on_plane = Vec3::new(
@@ -92,19 +107,43 @@ impl Camera {
         }
     }
 
+    /// The orthographic camera's ray through `film`: from (x, y, near) in the camera's frame, with
+    /// x = 1 − 2 film.x / width and y = (1 − 2 film.y / height) / aspect (Mitsuba's
+    /// `orthographic_projection`), along its +z, ending at the far plane.
+    fn orthographic_ray(&self, film: Vec2) -> CameraRay {
+        let aspect = self.resolution.x / self.resolution.y;
+        let sample = film / self.resolution;
+        let local = Vec3::new(
+            1.0 - 2.0 * sample.x,
+            (1.0 - 2.0 * sample.y) / aspect,
+            self.near_clip,
+        );
+        CameraRay {
+            ray: Ray::new(
+                self.to_world.transform_point3(local),
+                self.to_world.transform_vector3(Vec3::Z),
+            ),
+            t_max: self.far_clip - self.near_clip,
+        }
+    }
+
     /// Where the world point `p` appears to this camera through the point of its aperture that
     /// `u_lens` ∈ [0, 1)² picks (as [`Camera::generate_ray`] does; ignored for a pinhole): the
     /// film position of the camera rays that pass through that aperture point and `p`, the end
     /// of a ray to the camera, and the camera's importance there (see [`CameraConnection`]).
     /// `None` for points outside the clipping planes or more than `margin` pixels off the film (a
     /// reconstruction filter's radius: camera samples of the edge pixels reach that far).
-    /// Assumes a rigid (or uniformly scaled) camera transform, as `lookat` gives.
+    /// Assumes a rigid (or uniformly scaled) camera transform, as `lookat` gives. `None` for the
+    /// orthographic camera (see [`Camera::connects`]).
     ///
     /// With a thin lens every ray through the aperture point `a` and `p` comes from the film
     /// position whose pinhole ray meets the focus plane where the line from `a` through `p`
     /// does; choosing `a` uniformly on the aperture and weighting by the importance below is
     /// pbrt-v4's `PerspectiveCamera::SampleWi`, whose lens area cancels out.
     pub fn connect(&self, p: Vec3, margin: f32, u_lens: Vec2) -> Option<CameraConnection> {
+        if self.orthographic {
+            return None;
+        }
         let local = self.to_camera.transform_point3(p);
         if !(local.z > self.near_clip && local.z <= self.far_clip && local.is_finite()) {
             return None;
@@ -169,6 +208,7 @@ mod tests {
             far_clip: 20.0,
             lens: None,
             principal_point_offset: offset,
+            orthographic: false,
         };
         Camera::new(&sensor, 64, 48)
     }
@@ -232,5 +272,49 @@ mod tests {
                     .is_none()
             );
         }
+    }
+
+    #[test]
+    fn orthographic_rays_are_parallel_over_mitsubas_region() {
+        // A 2:1 film; to_world scales the region by 3 and turns the camera to look down −x.
+        let to_world = Mat4::from_cols(
+            glam::Vec4::new(0.0, 0.0, 3.0, 0.0),
+            glam::Vec4::new(0.0, 3.0, 0.0, 0.0),
+            glam::Vec4::new(-1.0, 0.0, 0.0, 0.0),
+            glam::Vec4::new(5.0, 0.0, 0.0, 1.0),
+        );
+        let sensor = SensorDesc {
+            to_world,
+            fov_deg: 90.0,
+            fov_axis: FovAxis::X,
+            near_clip: 0.5,
+            far_clip: 20.0,
+            lens: None,
+            principal_point_offset: [0.0, 0.0],
+            orthographic: true,
+        };
+        let camera = Camera::new(&sensor, 64, 32);
+        assert!(!camera.connects() && !camera.has_lens());
+        for (film, local) in [
+            // The top-left corner is local (+1, +1/aspect), the centre (0, 0), the bottom-right
+            // corner (−1, −1/aspect), all on the near plane.
+            (Vec2::ZERO, Vec3::new(1.0, 0.5, 0.5)),
+            (Vec2::new(32.0, 16.0), Vec3::new(0.0, 0.0, 0.5)),
+            (Vec2::new(64.0, 32.0), Vec3::new(-1.0, -0.5, 0.5)),
+        ] {
+            let ray = camera.generate_ray(film, Vec2::new(0.3, 0.7));
+            let origin = to_world.transform_point3(local);
+            assert!(ray.ray.origin.abs_diff_eq(origin, 1e-5), "{film}: {ray:?}");
+            assert!(
+                ray.ray.dir.abs_diff_eq(Vec3::NEG_X, 1e-6),
+                "{film}: {ray:?}"
+            );
+            assert_eq!(ray.t_max, 19.5);
+        }
+        assert!(
+            camera
+                .connect(Vec3::new(0.0, 0.0, 0.0), 1.0, Vec2::ZERO)
+                .is_none()
+        );
     }
 }

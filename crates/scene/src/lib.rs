@@ -21,9 +21,10 @@
 //!   single value), and `translate rotate scale lookat matrix` inside `<transform>`, composed in
 //!   document order.
 //! - `integrator`: path (and volpath, volpathmis: the path tracer, since no scene Strata reads
-//!   has media), direct. `sensor`: perspective, thinlens. `film`: hdrfilm. `rfilter`: box,
-//!   tent, gaussian, mitchell, catmullrom, lanczos. `sampler`: independent, stratified,
-//!   multijitter, ldsampler, orthogonal. `shape`: obj, ply, rectangle, cube, disk, sphere.
+//!   has media), direct. `sensor`: perspective, thinlens, orthographic. `film`: hdrfilm.
+//!   `rfilter`: box, tent, gaussian, mitchell, catmullrom, lanczos. `sampler`: independent,
+//!   stratified, multijitter, ldsampler, orthogonal. `shape`: obj, ply, rectangle, cube, disk,
+//!   sphere.
 //!   `bsdf`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
 //!   plastic, roughplastic, twosided, blendbsdf. `emitter`: area (in a shape), point, spot,
 //!   directional, constant, envmap (OpenEXR images).

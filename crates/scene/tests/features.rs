@@ -669,6 +669,26 @@ fn sampler_counts_follow_mitsuba_rounding() {
     }
 }
 
+/// `orthographic` takes to_world (scaling allowed: it sizes the viewing region) and the
+/// clipping planes; a field of view is an unknown parameter for it.
+#[test]
+fn orthographic_sensor() {
+    let text = wrap("").replace(
+        "<sensor type=\"perspective\"/>",
+        "<sensor type=\"orthographic\"><transform name=\"to_world\"><scale x=\"2\" y=\"2\"/><lookat origin=\"0, 0, 5\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform><float name=\"near_clip\" value=\"0.1\"/></sensor>",
+    );
+    let desc = ok("orthographic.xml", &text);
+    assert!(desc.sensor.orthographic && desc.sensor.lens.is_none());
+    assert_eq!(desc.sensor.near_clip, 0.1);
+    let with_fov = wrap("").replace(
+        "<sensor type=\"perspective\"/>",
+        "<sensor type=\"orthographic\"><float name=\"fov\" value=\"45\"/></sensor>",
+    );
+    let path = write_scene("orthographic_fov.xml", &with_fov);
+    let err = scene::parse_file(&path, &[]).expect_err("fov is not an orthographic parameter");
+    assert!(err.message.contains("fov"), "{err}");
+}
+
 /// `volpath` and `volpathmis` read as the path tracer with the same parameters (Strata reads no
 /// media, and without media Mitsuba's volumetric path tracers are its path tracer).
 #[test]

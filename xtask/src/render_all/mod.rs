@@ -52,7 +52,11 @@ impl SuiteScene {
             roulette: RussianRoulette {
                 start_depth: integrator.rr_depth.max(1),
             },
-            light_tracing: light_tracing_applies(&self.scene.features, max_depth),
+            light_tracing: light_tracing_applies(
+                &self.scene.features,
+                max_depth,
+                self.scene.camera.connects(),
+            ),
         }
     }
 }

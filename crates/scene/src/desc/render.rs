@@ -82,6 +82,10 @@ pub struct SensorDesc {
     /// film position `(u, v)` (fractions, from the top left) sees what the centred camera sees at
     /// `(u + x, v + y)`.
     pub principal_point_offset: [f32; 2],
+    /// Mitsuba's `orthographic` sensor: parallel rays along the camera's +z from its near plane,
+    /// over x ∈ [−1, 1] and y ∈ [−1/aspect, 1/aspect] of its frame (`to_world` may scale that
+    /// region); the field of view, lens and principal point do not apply.
+    pub orthographic: bool,
 }
 
 impl SensorDesc {

@@ -23,10 +23,16 @@ pub(crate) struct Camera {
 
 /// Interprets a `<sensor>` element; a missing film or sampler takes Mitsuba's defaults.
 pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
-    let thin_lens = match node.plugin.as_str() {
-        "perspective" => false,
-        "thinlens" => true,
-        _ => return Err(unknown_type(node, &["perspective", "thinlens"])),
+    let (thin_lens, orthographic) = match node.plugin.as_str() {
+        "perspective" => (false, false),
+        "thinlens" => (true, false),
+        "orthographic" => (false, true),
+        _ => {
+            return Err(unknown_type(
+                node,
+                &["perspective", "thinlens", "orthographic"],
+            ));
+        }
     };
     let mut film = None;
     let mut sampler = None;
@@ -50,12 +56,22 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
 
     let mut params = Params::new(node);
     let to_world = params.transform("to_world")?.unwrap_or(DMat4::IDENTITY);
-    if !is_rigid(&to_world) {
+    // An orthographic camera's to_world may scale its viewing region, as Mitsuba's may.
+    if orthographic && !(to_world.is_finite() && DMat3::from_mat4(to_world).determinant() != 0.0) {
+        return Err(params
+            .loc_of("to_world")
+            .error("the camera's to_world must be finite and invertible"));
+    }
+    if !orthographic && !is_rigid(&to_world) {
         return Err(params.loc_of("to_world").error(
             "the camera's to_world must not scale or shear (Mitsuba forbids it); use rotations, translations and lookat",
         ));
     }
-    let (fov_deg, fov_axis) = field_of_view(&mut params)?;
+    let (fov_deg, fov_axis) = if orthographic {
+        (90.0, FovAxis::X)
+    } else {
+        field_of_view(&mut params)?
+    };
     let near_clip = params.float_or("near_clip", 1e-2)?;
     let far_clip = params.float_or("far_clip", 1e4)?;
     if near_clip <= 0.0 {
@@ -69,14 +85,18 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
             .error("far_clip must be larger than near_clip"));
     }
     // Mitsuba reads focus_distance for every projective camera; a pinhole ignores it.
-    let focus_distance = params.float_or("focus_distance", far_clip)?;
+    let focus_distance = if orthographic {
+        far_clip
+    } else {
+        params.float_or("focus_distance", far_clip)?
+    };
     if focus_distance <= 0.0 {
         return Err(params
             .loc_of("focus_distance")
             .error("focus_distance must be positive"));
     }
     // Mitsuba's perspective sensor takes a principal point offset; its thinlens does not.
-    let principal_point_offset = if thin_lens {
+    let principal_point_offset = if thin_lens || orthographic {
         [0.0, 0.0]
     } else {
         [
@@ -110,6 +130,7 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
             far_clip: far_clip as f32,
             lens,
             principal_point_offset,
+            orthographic,
         },
         film: match film {
             Some(film) => film,
