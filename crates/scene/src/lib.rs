@@ -24,7 +24,7 @@
 //!   has media), direct. `sensor`: perspective, thinlens, orthographic. `film`: hdrfilm.
 //!   `rfilter`: box, tent, gaussian, mitchell, catmullrom, lanczos. `sampler`: independent,
 //!   stratified, multijitter, ldsampler, orthogonal. `shape`: obj, ply, rectangle, cube, disk,
-//!   sphere.
+//!   sphere, cylinder.
 //!   `bsdf`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
 //!   plastic, roughplastic, twosided, blendbsdf. `emitter`: area (in a shape), point, spot,
 //!   directional, constant, envmap (OpenEXR images).
@@ -39,7 +39,8 @@
 //! current `Mesh` behaviour. (Mitsuba 3.9's release instead kept the winding under mirroring
 //! transforms, so there a mirrored mesh's geometric normal points against its shading normal.)
 //! Meshes without normals get angle-weighted smooth normals unless `face_normals` is set, as in
-//! Mitsuba. The disk is a fan of 128 triangles whose area equals the disk's.
+//! Mitsuba. The disk is a fan of 128 triangles whose area equals the disk's, the cylinder a band
+//! of 256 facets whose area equals the tube's.
 
 #![warn(missing_docs)]
 

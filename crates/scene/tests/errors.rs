@@ -40,7 +40,7 @@ fn display_format() {
     let text = err.to_string();
     assert!(
         text.ends_with(
-            "display.xml:4:1: <shape type=\"foo\">: unknown shape type \"foo\" (supported: obj, ply, rectangle, cube, disk, sphere)"
+            "display.xml:4:1: <shape type=\"foo\">: unknown shape type \"foo\" (supported: obj, ply, rectangle, cube, disk, sphere, cylinder)"
         ),
         "{text}"
     );
@@ -609,6 +609,22 @@ fn references_and_parameters() {
         5,
         "<bsdf type=\"blendbsdf\">",
         "includes a dielectric",
+    );
+    expect(
+        "cylinder_radius.xml",
+        &wrap("<shape type=\"cylinder\">\n<float name=\"radius\" value=\"0\"/>\n</shape>"),
+        5,
+        "<float name=\"radius\"",
+        "radius must be positive",
+    );
+    expect(
+        "cylinder_axis.xml",
+        &wrap(
+            "<shape type=\"cylinder\">\n<point name=\"p0\" value=\"1, 1, 1\"/>\n<point name=\"p1\" value=\"1, 1, 1\"/>\n</shape>",
+        ),
+        6,
+        "<point name=\"p1\"",
+        "p0 and p1 must be distinct",
     );
     expect(
         "rough_plastic_equal_iors.xml",

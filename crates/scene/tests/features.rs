@@ -669,6 +669,46 @@ fn sampler_counts_follow_mitsuba_rounding() {
     }
 }
 
+/// `cylinder` from `p0` to `p1` with `radius`: its vertices lie on the tube (within the facets'
+/// enlargement), its area is 2π r |p1 − p0| and its normals point away from the axis, or
+/// towards it with `flip_normals`.
+#[test]
+fn cylinder_shape() {
+    for flip in [false, true] {
+        let desc = ok(
+            "cylinder.xml",
+            &wrap(&format!(
+                "<shape type=\"cylinder\"><point name=\"p0\" value=\"1, 2, 3\"/><point name=\"p1\" value=\"1, 2, 5\"/><float name=\"radius\" value=\"0.5\"/><boolean name=\"flip_normals\" value=\"{flip}\"/></shape>"
+            )),
+        );
+        let Geometry::Mesh(mesh) = &desc.shapes[0].geometry else {
+            panic!("a mesh: {:?}", desc.shapes[0].geometry);
+        };
+        let axis_point = |p: Vec3| Vec3::new(1.0, 2.0, p.z);
+        let mut area = 0.0;
+        for (i, _) in mesh.triangles.iter().enumerate() {
+            let n = triangle_normal(mesh, i);
+            let [a, b, c] = mesh.triangles[i].map(|v| mesh.positions[v as usize]);
+            area += 0.5 * (b - a).cross(c - a).length();
+            let centroid = (a + b + c) / 3.0;
+            let outward = (centroid - axis_point(centroid)).normalize();
+            let expected = if flip { -1.0 } else { 1.0 };
+            assert!(
+                (n.dot(outward) - expected).abs() < 1e-3,
+                "flip {flip}, triangle {i}: {n}"
+            );
+        }
+        assert!(
+            (area - std::f32::consts::TAU * 0.5 * 2.0).abs() < 1e-3,
+            "area {area}"
+        );
+        for p in &mesh.positions {
+            let r = (*p - axis_point(*p)).length();
+            assert!((r - 0.5).abs() < 1e-4 && (3.0..=5.0).contains(&p.z), "{p}");
+        }
+    }
+}
+
 /// `orthographic` takes to_world (scaling allowed: it sizes the viewing region) and the
 /// clipping planes; a field of view is an unknown parameter for it.
 #[test]

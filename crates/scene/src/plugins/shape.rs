@@ -7,7 +7,7 @@ use super::emitter::area_emitter;
 use super::{unexpected_child, unknown_type};
 use crate::desc::{Geometry, MeshDesc, ShapeDesc, SphereDesc};
 use crate::error::{Loc, Result};
-use crate::mesh::canonical::{cube, disk, rectangle};
+use crate::mesh::canonical::{cube, cylinder, disk, rectangle};
 use crate::mesh::obj::read_obj;
 use crate::mesh::place::{Shading, place};
 use crate::mesh::ply::read_ply;
@@ -15,7 +15,15 @@ use crate::params::Params;
 use crate::xml::tree::{Child, ObjectNode};
 
 /// The shape plugins this loader understands.
-const SUPPORTED: [&str; 6] = ["obj", "ply", "rectangle", "cube", "disk", "sphere"];
+const SUPPORTED: [&str; 7] = [
+    "obj",
+    "ply",
+    "rectangle",
+    "cube",
+    "disk",
+    "sphere",
+    "cylinder",
+];
 
 /// Interprets a `<shape>` element; its BSDF goes into `bsdfs`.
 pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Result<ShapeDesc> {
@@ -47,6 +55,12 @@ pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Resu
     let flip_normals = params.boolean_or("flip_normals", false)?;
     let geometry = match node.plugin.as_str() {
         "sphere" => Geometry::Sphere(sphere(&mut params, &to_world, flip_normals)?),
+        "cylinder" => {
+            let object_to_world = to_world * cylinder_frame(&mut params)?;
+            let placed = place(cylinder(), &object_to_world, flip_normals, Shading::Smooth)
+                .map_err(|e| to_world_loc.error(e))?;
+            Geometry::Mesh(placed)
+        }
         plugin => {
             let (mesh, shading) = match plugin {
                 "obj" | "ply" => mesh_file(&mut params, plugin)?,
@@ -139,6 +153,37 @@ fn mesh_file(params: &mut Params, plugin: &str) -> Result<(MeshDesc, Shading)> {
 }
 
 /// A sphere placed by `to_world`, which may only rotate, translate and scale uniformly.
+/// The cylinder's `p0` (default origin), `p1` (default +z) and `radius` (default 1) as the
+/// transform of the unit cylinder: Mitsuba's translate(p0) · to_frame(p1 − p0) · scale(r, r, |p1 −
+/// p0|), the frame built around the axis as Mitsuba's `coordinate_system` builds it.
+fn cylinder_frame(params: &mut Params) -> Result<DMat4> {
+    let p0 = params.point("p0")?.unwrap_or(DVec3::ZERO);
+    let p1 = params.point("p1")?.unwrap_or(DVec3::Z);
+    let radius = params.float_or("radius", 1.0)?;
+    if !(radius > 0.0 && radius.is_finite()) {
+        return Err(params
+            .loc_of("radius")
+            .error(format!("radius must be positive, got {radius}")));
+    }
+    let axis = p1 - p0;
+    let length = axis.length();
+    if !(length > 0.0 && length.is_finite()) {
+        return Err(params
+            .loc_of("p1")
+            .error("p0 and p1 must be distinct finite points"));
+    }
+    let n = axis / length;
+    // Duff et al. 2017, "Building an orthonormal basis, revisited" (Mitsuba's coordinate_system).
+    let sign = 1.0_f64.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    let s = DVec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    let t = DVec3::new(b, sign + n.y * n.y * a, -n.y);
+    Ok(DMat4::from_translation(p0)
+        * DMat4::from_cols(s.extend(0.0), t.extend(0.0), n.extend(0.0), glam::DVec4::W)
+        * DMat4::from_scale(DVec3::new(radius, radius, length)))
+}
+
 fn sphere(params: &mut Params, to_world: &DMat4, flip_normals: bool) -> Result<SphereDesc> {
     let center = params.point("center")?.unwrap_or(DVec3::ZERO);
     let radius = params.float_or("radius", 1.0)?;
