@@ -3,7 +3,7 @@
 
 use crate::{CameraRay, RayTally};
 use geometry::{Accel, Hit, Ray};
-use glam::Vec3;
+use glam::{Affine2, Vec3};
 use lights::{Light, LightSample};
 use materials::Bsdf;
 use sampling::Frame;
@@ -11,11 +11,35 @@ use sampling::Frame;
 /// Index into [`World::materials`].
 pub type MaterialId = u32;
 
+/// A material whose one textured parameter is Mitsuba's `checkerboard`: two BSDFs, the
+/// material's own where the pattern shows `color0` and `odd` where it shows `color1`. With
+/// (u, v) = `to_uv` applied to the hit's surface coordinates, `odd` is chosen where exactly one
+/// of the fractional parts of u and v exceeds ½.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Checkerboard {
+    /// Transformation of the surface coordinates before the pattern (Mitsuba's `to_uv`).
+    pub to_uv: Affine2,
+    /// The material of the `color1` squares.
+    pub odd: MaterialId,
+}
+
+impl Checkerboard {
+    /// Whether the surface coordinates `uv` fall on a `color1` square.
+    #[inline]
+    pub fn is_odd(&self, uv: glam::Vec2) -> bool {
+        let uv = self.to_uv.transform_point2(uv);
+        let fraction = uv - uv.floor();
+        (fraction.x > 0.5) != (fraction.y > 0.5)
+    }
+}
+
 /// The renderable scene: one acceleration structure over all shapes, a material per shape, and
 /// the lights, some of which are attached to shapes.
 pub struct World {
     accel: Accel,
     materials: Vec<Bsdf>,
+    /// Per material, its checkerboard if it has one; empty when no material has.
+    checkerboards: Vec<Option<Checkerboard>>,
     shape_material: Vec<MaterialId>,
     shape_light: Vec<Option<u32>>,
     lights: Vec<Light>,
@@ -100,6 +124,7 @@ impl World {
         Ok(Self {
             accel,
             materials,
+            checkerboards: Vec::new(),
             shape_material,
             shape_light,
             lights,
@@ -135,6 +160,48 @@ impl World {
         &self.materials
     }
 
+    /// Gives materials checkerboards, one entry per material (`None` for a plain one); an error
+    /// when the count differs or a checkerboard's `odd` material is out of range or has one itself.
+    pub fn set_checkerboards(
+        &mut self,
+        checkerboards: Vec<Option<Checkerboard>>,
+    ) -> Result<(), String> {
+        if checkerboards.len() != self.materials.len() {
+            return Err(format!(
+                "{} checkerboard entries for {} materials",
+                checkerboards.len(),
+                self.materials.len()
+            ));
+        }
+        for (i, checker) in checkerboards.iter().enumerate() {
+            if let Some(c) = checker {
+                let odd = c.odd as usize;
+                if odd >= self.materials.len() || checkerboards[odd].is_some() {
+                    return Err(format!(
+                        "material {i}: its checkerboard's material {odd} is invalid"
+                    ));
+                }
+            }
+        }
+        self.checkerboards = if checkerboards.iter().any(Option::is_some) {
+            checkerboards
+        } else {
+            Vec::new()
+        };
+        Ok(())
+    }
+
+    /// The material `hit` sees of `material`: its checkerboard's odd one on an odd square. Kept
+    /// out of line, so that scenes without checkerboards pay one test per hit for them.
+    #[cold]
+    #[inline(never)]
+    fn checkered(&self, material: MaterialId, hit: &Hit) -> MaterialId {
+        match &self.checkerboards[material as usize] {
+            Some(checker) if checker.is_odd(self.accel.uv(hit)) => checker.odd,
+            _ => material,
+        }
+    }
+
     /// Whether some material chooses its lobe by a random number ([`Bsdf::uses_lobe_choice`]:
     /// a dielectric), so the integrators draw one at every vertex.
     pub fn has_lobe_choice(&self) -> bool {
@@ -165,7 +232,11 @@ impl World {
         let hit = self.accel.intersect(ray, t_max)?;
         let shape = hit.shape as usize;
         let frame = Frame::from_normal(hit.ns);
-        let (bsdf, frame) = match &self.materials[self.shape_material[shape] as usize] {
+        let mut material = self.shape_material[shape];
+        if !self.checkerboards.is_empty() {
+            material = self.checkered(material, &hit);
+        }
+        let (bsdf, frame) = match &self.materials[material as usize] {
             Bsdf::TwoSided(two_sided) => match two_sided.facing(frame.to_local(-ray.dir)) {
                 (side, true) => (side, frame.mirrored()),
                 (side, false) => (side, frame),

@@ -226,6 +226,13 @@ fn blend() {
     );
 }
 
+/// Mitsuba's `checkerboard` as diffuse reflectances (a tiled floor, a sphere, a twosided card, a
+/// cube), from the Mitsuba crosscheck scenes.
+#[test]
+fn checkerboard() {
+    check_scene("../tests/crosscheck/checkerboard.xml", EASY);
+}
+
 /// Mitsuba's `roughplastic` (a glossy coating over a diffuse base, seen directly and through
 /// the twosided wrapper), from the Mitsuba crosscheck scenes, every roughness at 0.3.
 #[test]

@@ -7,7 +7,8 @@ use crate::{
     BsdfDesc, EmitterDesc, Geometry, LoadError, MicrofacetDistribution, SceneDesc, ShapeDesc,
 };
 use geometry::{Accel, Shape, Sphere, TriangleMesh};
-use integrators::World;
+use glam::Affine2;
+use integrators::{Checkerboard, World};
 use lights::{
     ConstantEnvironment, DirectionalLight, EnvironmentMap, Light, MeshAreaLight, PointLight,
     SphereAreaLight, SpotLight,
@@ -42,12 +43,28 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
         element,
         message,
     };
-    let materials = desc
+    let mut materials = desc
         .bsdfs
         .iter()
         .enumerate()
         .map(|(i, b)| build_bsdf(b).map_err(|m| error(format!("bsdf #{i}"), m)))
         .collect::<Result<Vec<_>, _>>()?;
+    // A checkerboard's material is its even BSDF; its odd one goes after the scene's own.
+    let mut checkerboards = vec![None; materials.len()];
+    for (i, bsdf) in desc.bsdfs.iter().enumerate() {
+        if let BsdfDesc::Checkerboard { odd, to_uv, .. } = bsdf {
+            checkerboards[i] = Some(Checkerboard {
+                to_uv: Affine2::from_cols_array_2d(&[
+                    [to_uv[0][0], to_uv[1][0]],
+                    [to_uv[0][1], to_uv[1][1]],
+                    [to_uv[0][2], to_uv[1][2]],
+                ]),
+                odd: materials.len() as u32,
+            });
+            materials.push(build_bsdf(odd).map_err(|m| error(format!("bsdf #{i}"), m))?);
+        }
+    }
+    checkerboards.resize(materials.len(), None);
 
     let mut shapes = Vec::with_capacity(desc.shapes.len());
     let mut shape_material = Vec::with_capacity(desc.shapes.len());
@@ -123,7 +140,7 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
         light_weights.push(emitter.sampling_weight());
     }
     let features = SceneFeatures::of(&materials, &lights);
-    let world = World::new(
+    let mut world = World::new(
         accel,
         materials,
         shape_material,
@@ -132,6 +149,9 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
         light_weights,
     )
     .map_err(|m| error("scene".to_string(), m))?;
+    world
+        .set_checkerboards(checkerboards)
+        .map_err(|m| error("scene".to_string(), m))?;
     let camera = camera(&desc);
     Ok(RenderScene {
         world,
@@ -294,6 +314,11 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
         } => Blend::new(build_bsdf(first)?, build_bsdf(second)?, *weight)
             .map_err(|e| e.to_string())?
             .into(),
+        // Building it checks both; the scene takes the even one as the material itself.
+        BsdfDesc::Checkerboard { even, odd, .. } => {
+            build_bsdf(odd)?;
+            build_bsdf(even)?
+        }
         BsdfDesc::TwoSided { front, back } => Bsdf::TwoSided(
             TwoSided::with_sides(build_bsdf(front)?, build_bsdf(back)?)
                 .map_err(|e| e.to_string())?,

@@ -56,7 +56,8 @@ fn interpret_scene(path: &Path, root: &ObjectNode) -> Result<SceneDesc> {
             ));
         };
         match object.tag.as_str() {
-            "bsdf" => {}
+            // Top-level BSDFs are read above; textures when a BSDF references them.
+            "bsdf" | "texture" => {}
             "integrator" if integrator_desc.is_none() => {
                 integrator_desc = Some(integrator(object)?);
             }

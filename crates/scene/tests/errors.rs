@@ -126,7 +126,7 @@ fn unsupported_things() {
         ),
         5,
         "<texture type=\"bitmap\"",
-        "cannot contain",
+        "bitmap textures are not supported yet",
     );
     expect(
         "aniso.xml",
@@ -625,6 +625,40 @@ fn references_and_parameters() {
         6,
         "<point name=\"p1\"",
         "p0 and p1 must be distinct",
+    );
+    expect(
+        "texture_name.xml",
+        &wrap("<bsdf type=\"diffuse\">\n<texture type=\"checkerboard\" name=\"albedo\"/>\n</bsdf>"),
+        5,
+        "<texture type=\"checkerboard\"",
+        "only as a diffuse BSDF's \"reflectance\"",
+    );
+    expect(
+        "texture_twice.xml",
+        &wrap(
+            "<bsdf type=\"diffuse\">\n<texture type=\"checkerboard\" name=\"reflectance\"/>\n<rgb name=\"reflectance\" value=\"0.5\"/>\n</bsdf>",
+        ),
+        6,
+        "<rgb name=\"reflectance\"",
+        "given twice",
+    );
+    expect(
+        "texture_on_plastic.xml",
+        &wrap(
+            "<bsdf type=\"plastic\">\n<texture type=\"checkerboard\" name=\"diffuse_reflectance\"/>\n</bsdf>",
+        ),
+        5,
+        "<texture type=\"checkerboard\"",
+        "no nested elements",
+    );
+    expect(
+        "texture_ref_to_bsdf.xml",
+        &wrap(
+            "<bsdf type=\"conductor\" id=\"metal\"/>\n<bsdf type=\"diffuse\">\n<ref name=\"reflectance\" id=\"metal\"/>\n</bsdf>",
+        ),
+        6,
+        "<ref",
+        "a <texture> is expected",
     );
     expect(
         "rough_plastic_equal_iors.xml",

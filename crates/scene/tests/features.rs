@@ -261,6 +261,52 @@ fn blend_parameters() {
     );
 }
 
+/// A `checkerboard` as a diffuse reflectance (nested, or declared at the top level and
+/// referenced by id) becomes a checkerboard of two diffuse BSDFs with `to_uv`'s 2D affine part;
+/// `twosided` and `blendbsdf` around it are hoisted inside the checkerboard.
+#[test]
+fn checkerboard_reflectance() {
+    let desc = ok(
+        "checkerboard.xml",
+        &wrap(
+            "<texture type=\"checkerboard\" id=\"tiles\"><rgb name=\"color0\" value=\"0.9, 0.8, 0.7\"/><float name=\"color1\" value=\"0.1\"/><transform name=\"to_uv\"><scale x=\"8\" y=\"4\"/><translate x=\"0.5\"/></transform></texture>
+<bsdf type=\"diffuse\"><ref name=\"reflectance\" id=\"tiles\"/></bsdf>
+<bsdf type=\"twosided\"><bsdf type=\"diffuse\"><texture type=\"checkerboard\" name=\"reflectance\"/></bsdf></bsdf>
+<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/><bsdf type=\"conductor\"/><bsdf type=\"diffuse\"><ref name=\"reflectance\" id=\"tiles\"/></bsdf></bsdf>",
+        ),
+    );
+    let diffuse = |v: Vec3| Box::new(BsdfDesc::Diffuse { reflectance: v });
+    assert_eq!(
+        desc.bsdfs[0],
+        BsdfDesc::Checkerboard {
+            even: diffuse(Vec3::new(0.9, 0.8, 0.7)),
+            odd: diffuse(Vec3::splat(0.1)),
+            to_uv: [[8.0, 0.0, 0.5], [0.0, 4.0, 0.0]],
+        }
+    );
+    let two_sided = |v: f32| {
+        Box::new(BsdfDesc::TwoSided {
+            front: diffuse(Vec3::splat(v)),
+            back: diffuse(Vec3::splat(v)),
+        })
+    };
+    assert_eq!(
+        desc.bsdfs[1],
+        BsdfDesc::Checkerboard {
+            even: two_sided(0.4),
+            odd: two_sided(0.2),
+            to_uv: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        }
+    );
+    let BsdfDesc::Checkerboard { even, odd, .. } = &desc.bsdfs[2] else {
+        panic!("a hoisted blend: {:?}", desc.bsdfs[2]);
+    };
+    assert!(
+        matches!((&**even, &**odd), (BsdfDesc::Blend { second: a, .. }, BsdfDesc::Blend { second: b, .. })
+            if **a == *diffuse(Vec3::new(0.9, 0.8, 0.7)) && **b == *diffuse(Vec3::splat(0.1)))
+    );
+}
+
 /// `roughplastic` reads Mitsuba's defaults (Beckmann, α 0.1, polypropylene in air, base 0.5,
 /// white coating, linear) and every parameter, and may sit inside `twosided`.
 #[test]

@@ -122,6 +122,19 @@ pub enum BsdfDesc {
         /// The blend weight in [0, 1].
         weight: f32,
     },
+    /// A BSDF whose one textured parameter is a `checkerboard` texture: `even` is the BSDF
+    /// with the texture's `color0` in its place, `odd` with its `color1`; with (u, v) = `to_uv`
+    /// applied to a hit's surface coordinates, `odd` applies where exactly one of the fractional
+    /// parts of u and v exceeds ½ (Mitsuba's pattern).
+    Checkerboard {
+        /// The BSDF where the pattern shows `color0`.
+        even: Box<BsdfDesc>,
+        /// The BSDF where it shows `color1`.
+        odd: Box<BsdfDesc>,
+        /// Mitsuba's `to_uv` as two rows: u' = row 0 · (u, v, 1), v' = row 1 · (u, v, 1)
+        /// (default identity).
+        to_uv: [[f32; 3]; 2],
+    },
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.
     TwoSided {

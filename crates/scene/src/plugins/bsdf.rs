@@ -140,11 +140,34 @@ impl<'a> BsdfTable<'a> {
 
     /// Interprets a `<bsdf>` element other than `twosided`.
     fn one_sided(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
-        super::no_children(node)?;
+        let texture = if node.plugin == "diffuse" {
+            self.reflectance_texture(node)?
+        } else {
+            super::no_children(node)?;
+            None
+        };
         let mut params = Params::new(node);
         let bsdf = match node.plugin.as_str() {
-            "diffuse" => BsdfDesc::Diffuse {
-                reflectance: rgb(&mut params, "reflectance", ColorKind::Reflectance, 0.5)?,
+            "diffuse" => match texture {
+                Some(checker) => {
+                    if params.has("reflectance") {
+                        return Err(params.loc_of("reflectance").error(
+                            "\"reflectance\" is given twice (as a value and as a texture)",
+                        ));
+                    }
+                    BsdfDesc::Checkerboard {
+                        even: Box::new(BsdfDesc::Diffuse {
+                            reflectance: checker.color0,
+                        }),
+                        odd: Box::new(BsdfDesc::Diffuse {
+                            reflectance: checker.color1,
+                        }),
+                        to_uv: checker.to_uv,
+                    }
+                }
+                None => BsdfDesc::Diffuse {
+                    reflectance: rgb(&mut params, "reflectance", ColorKind::Reflectance, 0.5)?,
+                },
             },
             "conductor" => {
                 let (eta, k) = conductor_ior(&mut params)?;
@@ -252,7 +275,7 @@ impl<'a> BsdfTable<'a> {
             .next()
             .ok_or_else(|| node.loc.error("twosided needs a nested BSDF"))?;
         let back = sides.next().unwrap_or_else(|| front.clone());
-        Ok(BsdfDesc::TwoSided {
+        hoist_checkerboard(node, [front, back], |[front, back]| BsdfDesc::TwoSided {
             front: Box::new(front),
             back: Box::new(back),
         })
@@ -303,11 +326,51 @@ impl<'a> BsdfTable<'a> {
         let (Some(first), Some(second)) = (nested.next(), nested.next()) else {
             return Err(node.loc.error("blendbsdf needs two nested BSDFs"));
         };
-        Ok(BsdfDesc::Blend {
+        let weight = weight as f32;
+        hoist_checkerboard(node, [first, second], |[first, second]| BsdfDesc::Blend {
             first: Box::new(first),
             second: Box::new(second),
-            weight: weight as f32,
+            weight,
         })
+    }
+
+    /// The checkerboard a diffuse `node` takes as its `reflectance` (a nested `<texture
+    /// name="reflectance">` or a `<ref name="reflectance" id="...">` to one), if any; any other
+    /// nested element is an error.
+    fn reflectance_texture(&self, node: &'a ObjectNode) -> Result<Option<CheckerboardDesc>> {
+        let mut found = None;
+        for child in &node.children {
+            let (texture, name, loc) = match child {
+                Child::Object(object) if object.tag == "texture" => {
+                    (object, object.name.as_deref(), &object.loc)
+                }
+                Child::Ref(reference) if reference.name.is_some() => {
+                    let Some(&object) = self.by_id.get(reference.id.as_str()) else {
+                        return Err(reference
+                            .loc
+                            .error(format!("no object with id \"{}\"", reference.id)));
+                    };
+                    if object.tag != "texture" {
+                        return Err(reference.loc.error(format!(
+                            "id \"{}\" names a <{}>, but a <texture> is expected here",
+                            reference.id, object.tag
+                        )));
+                    }
+                    (object, reference.name.as_deref(), &reference.loc)
+                }
+                _ => return Err(unexpected_child(node, child, "a reflectance <texture>")),
+            };
+            if name != Some("reflectance") {
+                return Err(
+                    loc.error("a texture is supported only as a diffuse BSDF's \"reflectance\"")
+                );
+            }
+            if found.is_some() {
+                return Err(loc.error("\"reflectance\" is given twice"));
+            }
+            found = Some(checkerboard(texture)?);
+        }
+        Ok(found)
     }
 }
 
@@ -320,8 +383,91 @@ fn bsdf_has_transmission(desc: &BsdfDesc) -> bool {
         BsdfDesc::Blend { first, second, .. } => {
             bsdf_has_transmission(first) || bsdf_has_transmission(second)
         }
+        BsdfDesc::Checkerboard { even, odd, .. } => {
+            bsdf_has_transmission(even) || bsdf_has_transmission(odd)
+        }
         _ => false,
     }
+}
+
+/// Mitsuba's `checkerboard` texture as Strata reads it.
+struct CheckerboardDesc {
+    color0: glam::Vec3,
+    color1: glam::Vec3,
+    to_uv: [[f32; 3]; 2],
+}
+
+/// A `<texture>` element: `checkerboard` (`color0` default 0.4, `color1` default 0.2, `to_uv`);
+/// other textures are errors naming the element.
+fn checkerboard(node: &ObjectNode) -> Result<CheckerboardDesc> {
+    match node.plugin.as_str() {
+        "checkerboard" => {}
+        "bitmap" => {
+            return Err(node
+                .loc
+                .error("bitmap textures are not supported yet (supported: checkerboard)"));
+        }
+        _ => return Err(unknown_type(node, &["checkerboard"])),
+    }
+    super::no_children(node)?;
+    let mut params = Params::new(node);
+    let color0 = rgb(&mut params, "color0", ColorKind::Reflectance, 0.4)?;
+    let color1 = rgb(&mut params, "color1", ColorKind::Reflectance, 0.2)?;
+    let m = params.transform("to_uv")?.unwrap_or(glam::DMat4::IDENTITY);
+    params.finish()?;
+    // The 2D affine part of the 4 × 4 transform: rows and columns x, y and the translation.
+    let to_uv = [
+        [m.x_axis.x, m.y_axis.x, m.w_axis.x].map(|v| v as f32),
+        [m.x_axis.y, m.y_axis.y, m.w_axis.y].map(|v| v as f32),
+    ];
+    Ok(CheckerboardDesc {
+        color0,
+        color1,
+        to_uv,
+    })
+}
+
+/// `wrap` applied to `parts`, where a checkerboard among them becomes a checkerboard of the
+/// wrapped BSDFs (the parts with its `even`, then its `odd` BSDF), so that the texture is chosen
+/// before the wrapper; two different checkerboards in one material are an error.
+fn hoist_checkerboard(
+    node: &ObjectNode,
+    parts: [BsdfDesc; 2],
+    wrap: impl Fn([BsdfDesc; 2]) -> BsdfDesc,
+) -> Result<BsdfDesc> {
+    let checker = parts.iter().find_map(|p| match p {
+        BsdfDesc::Checkerboard { to_uv, .. } => Some((p.clone(), *to_uv)),
+        _ => None,
+    });
+    let Some((checker, to_uv)) = checker else {
+        return Ok(wrap(parts));
+    };
+    if parts
+        .iter()
+        .any(|p| matches!(p, BsdfDesc::Checkerboard { .. }) && *p != checker)
+    {
+        return Err(node
+            .loc
+            .error("only one checkerboard texture per material is supported"));
+    }
+    let side = |part: &BsdfDesc, even: bool| match part {
+        BsdfDesc::Checkerboard {
+            even: e, odd: o, ..
+        } => {
+            if even {
+                (**e).clone()
+            } else {
+                (**o).clone()
+            }
+        }
+        other => other.clone(),
+    };
+    let [a, b] = &parts;
+    Ok(BsdfDesc::Checkerboard {
+        even: Box::new(wrap([side(a, true), side(b, true)])),
+        odd: Box::new(wrap([side(a, false), side(b, false)])),
+        to_uv,
+    })
 }
 
 /// Records every object with an id below `node`.

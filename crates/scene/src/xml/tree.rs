@@ -107,6 +107,8 @@ pub(crate) struct Prop {
 #[derive(Debug, Clone)]
 pub(crate) struct RefNode {
     pub id: String,
+    /// The `name` attribute: the parameter the referenced object sets (a texture's).
+    pub name: Option<String>,
     pub loc: Loc,
 }
 
@@ -126,6 +128,8 @@ pub(crate) struct ObjectNode {
     pub plugin: String,
     /// The `id` attribute.
     pub id: Option<String>,
+    /// The `name` attribute: the parameter a nested object sets (a texture's).
+    pub name: Option<String>,
     /// Where the element is; `element` is its opening tag.
     pub loc: Loc,
     /// Properties in document order.
@@ -359,6 +363,7 @@ impl Builder {
             plugin: attrs.get("type").unwrap_or_default().to_string(),
             tag,
             id,
+            name: attrs.get("name").map(str::to_string),
             loc,
             props: Vec::new(),
             children: Vec::new(),
@@ -419,7 +424,8 @@ impl Builder {
             "ref" => {
                 attrs.check(&["id", "name"], &["id"], &loc)?;
                 let id = attrs.get("id").unwrap_or_default().to_string();
-                parent.children.push(Child::Ref(RefNode { id, loc }));
+                let name = attrs.get("name").map(str::to_string);
+                parent.children.push(Child::Ref(RefNode { id, name, loc }));
                 Ok(())
             }
             "default" => {
