@@ -52,11 +52,7 @@ impl Plastic {
     ) -> Result<Self, MaterialError> {
         let eta = relative_ior(int_ior, ext_ior)?;
         let internal = diffuse_fresnel_reflectance(1.0 / eta);
-        let base_through_coating = if nonlinear {
-            diffuse_reflectance / (Vec3::ONE - diffuse_reflectance * internal)
-        } else {
-            diffuse_reflectance / (1.0 - internal)
-        };
+        let base_through_coating = base_through_coating(diffuse_reflectance, internal, nonlinear);
         Ok(Self {
             eta,
             inv_eta_sqr: 1.0 / (eta * eta),
@@ -186,5 +182,20 @@ pub(crate) fn specular_sampling_weight(
         specular_mean / means
     } else {
         0.5
+    }
+}
+
+/// A coated base's reflectance with the coating's internal reflections summed: ρ / (1 − R_int),
+/// or with Mitsuba's `nonlinear` ρ / (1 − ρ R_int), for the coating's reflectance `internal`
+/// (R_int) of diffuse light from inside.
+pub(crate) fn base_through_coating(
+    diffuse_reflectance: Vec3,
+    internal: f32,
+    nonlinear: bool,
+) -> Vec3 {
+    if nonlinear {
+        diffuse_reflectance / (Vec3::ONE - diffuse_reflectance * internal)
+    } else {
+        diffuse_reflectance / (1.0 - internal)
     }
 }

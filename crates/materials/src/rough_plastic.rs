@@ -5,7 +5,7 @@ use crate::bsdf::BsdfSample;
 use crate::error::{MaterialError, relative_ior};
 use crate::fresnel::{fresnel_dielectric, reflect_about};
 use crate::microfacet::Microfacet;
-use crate::plastic::specular_sampling_weight;
+use crate::plastic::{base_through_coating, specular_sampling_weight};
 use glam::{Vec2, Vec3};
 use sampling::warp::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use std::f32::consts::FRAC_1_PI;
@@ -79,11 +79,8 @@ impl RoughPlastic {
                 })
                 .sum::<f32>()
             / TRANSMITTANCE_ENTRIES as f32;
-        let base_through_coating = if nonlinear {
-            diffuse_reflectance / (Vec3::ONE - diffuse_reflectance * internal_reflectance)
-        } else {
-            diffuse_reflectance / (1.0 - internal_reflectance)
-        };
+        let base_through_coating =
+            base_through_coating(diffuse_reflectance, internal_reflectance, nonlinear);
         Ok(Self {
             distribution,
             eta,

@@ -67,17 +67,7 @@ impl<'a> BsdfTable<'a> {
 
     /// The index of the BSDF a `<ref>` names.
     pub fn reference(&mut self, reference: &RefNode) -> Result<usize> {
-        let Some(&node) = self.by_id.get(reference.id.as_str()) else {
-            return Err(reference
-                .loc
-                .error(format!("no object with id \"{}\"", reference.id)));
-        };
-        if node.tag != "bsdf" {
-            return Err(reference.loc.error(format!(
-                "id \"{}\" names a <{}>, but a <bsdf> is expected here",
-                reference.id, node.tag
-            )));
-        }
+        let node = self.referenced(reference, "bsdf")?;
         self.add_with_id(node)
     }
 
@@ -334,6 +324,22 @@ impl<'a> BsdfTable<'a> {
         })
     }
 
+    /// The object with a `tag` element that `reference` names, or an error at the reference.
+    fn referenced(&self, reference: &RefNode, tag: &str) -> Result<&'a ObjectNode> {
+        let Some(&node) = self.by_id.get(reference.id.as_str()) else {
+            return Err(reference
+                .loc
+                .error(format!("no object with id \"{}\"", reference.id)));
+        };
+        if node.tag != tag {
+            return Err(reference.loc.error(format!(
+                "id \"{}\" names a <{}>, but a <{tag}> is expected here",
+                reference.id, node.tag
+            )));
+        }
+        Ok(node)
+    }
+
     /// The checkerboard a diffuse `node` takes as its `reflectance` (a nested `<texture
     /// name="reflectance">` or a `<ref name="reflectance" id="...">` to one), if any; any other
     /// nested element is an error.
@@ -344,20 +350,11 @@ impl<'a> BsdfTable<'a> {
                 Child::Object(object) if object.tag == "texture" => {
                     (object, object.name.as_deref(), &object.loc)
                 }
-                Child::Ref(reference) if reference.name.is_some() => {
-                    let Some(&object) = self.by_id.get(reference.id.as_str()) else {
-                        return Err(reference
-                            .loc
-                            .error(format!("no object with id \"{}\"", reference.id)));
-                    };
-                    if object.tag != "texture" {
-                        return Err(reference.loc.error(format!(
-                            "id \"{}\" names a <{}>, but a <texture> is expected here",
-                            reference.id, object.tag
-                        )));
-                    }
-                    (object, reference.name.as_deref(), &reference.loc)
-                }
+                Child::Ref(reference) if reference.name.is_some() => (
+                    self.referenced(reference, "texture")?,
+                    reference.name.as_deref(),
+                    &reference.loc,
+                ),
                 _ => return Err(unexpected_child(node, child, "a reflectance <texture>")),
             };
             if name != Some("reflectance") {
