@@ -33,11 +33,6 @@ pub struct Plastic {
 }
 
 impl Plastic {
-    /// Mitsuba's default `int_ior`: polypropylene.
-    pub const DEFAULT_INT_IOR: f32 = 1.49;
-    /// Mitsuba's default `ext_ior`: air.
-    pub const DEFAULT_EXT_IOR: f32 = 1.000_277;
-
     /// A coating of interior index `int_ior` over exterior index `ext_ior` (finite and positive,
     /// else an error) on a base of RGB albedo `diffuse_reflectance` (Mitsuba's default 0.5),
     /// with an RGB multiplier on the specular reflection (`specular_reflectance`, default 1)

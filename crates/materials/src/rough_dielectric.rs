@@ -37,11 +37,6 @@ struct HalfVector {
 }
 
 impl RoughDielectric {
-    /// Mitsuba's default `int_ior`: BK7 glass.
-    pub const DEFAULT_INT_IOR: f32 = 1.5046;
-    /// Mitsuba's default `ext_ior`: air.
-    pub const DEFAULT_EXT_IOR: f32 = 1.000_277;
-
     /// An interface with microfacet `distribution`, interior index `int_ior` and exterior index
     /// `ext_ior` (finite and positive, else an error), with RGB multipliers on the reflected and
     /// refracted light (Mitsuba's `specular_reflectance` and `specular_transmittance`).
@@ -58,11 +53,6 @@ impl RoughDielectric {
             specular_reflectance,
             specular_transmittance,
         })
-    }
-
-    /// The microfacet distribution.
-    pub fn distribution(&self) -> Microfacet {
-        self.distribution
     }
 
     /// Reflectance and transmittance multipliers at normal incidence, RGB, as for the smooth
