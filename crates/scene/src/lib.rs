@@ -24,7 +24,7 @@
 //!   has media), direct. `sensor`: perspective, thinlens, orthographic. `film`: hdrfilm.
 //!   `rfilter`: box, tent, gaussian, mitchell, catmullrom, lanczos. `sampler`: independent,
 //!   stratified, multijitter, ldsampler, orthogonal. `shape`: obj, ply, rectangle, cube, disk,
-//!   sphere, cylinder.
+//!   sphere, cylinder, shapegroup and instance (baked into world space).
 //!   `bsdf`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
 //!   plastic, roughplastic, twosided, blendbsdf. `emitter`: area (in a shape), point, spot,
 //!   directional, constant, envmap (OpenEXR images).

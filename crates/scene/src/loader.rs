@@ -7,6 +7,7 @@ use crate::error::Result;
 use crate::params::Params;
 use crate::plugins::bsdf::BsdfTable;
 use crate::plugins::emitter::scene_emitter;
+use crate::plugins::instance::ShapeGroups;
 use crate::plugins::integrator::integrator;
 use crate::plugins::sensor::{Camera, sensor};
 use crate::plugins::shape::shape;
@@ -48,6 +49,7 @@ fn interpret_scene(path: &Path, root: &ObjectNode) -> Result<SceneDesc> {
             bsdfs.add(object)?;
         }
     }
+    let mut groups = ShapeGroups::new(root)?;
     let mut shapes = Vec::new();
     for child in &root.children {
         let Child::Object(object) = child else {
@@ -66,6 +68,11 @@ fn interpret_scene(path: &Path, root: &ObjectNode) -> Result<SceneDesc> {
             }
             "sensor" if camera.is_none() => camera = Some(sensor(object)?),
             "sensor" => return Err(object.loc.error("a scene can have only one <sensor>")),
+            // A shape group is placed by its instances only.
+            "shape" if object.plugin == "shapegroup" => {}
+            "shape" if object.plugin == "instance" => {
+                shapes.extend(groups.instance(object, &mut bsdfs)?);
+            }
             "shape" => shapes.push(shape(object, &mut bsdfs)?),
             "emitter" => emitters.push(scene_emitter(object)?),
             "film" | "sampler" => {

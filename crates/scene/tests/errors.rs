@@ -661,6 +661,45 @@ fn references_and_parameters() {
         "a <texture> is expected",
     );
     expect(
+        "group_without_id.xml",
+        &wrap("<shape type=\"shapegroup\">\n<shape type=\"cube\"/>\n</shape>"),
+        4,
+        "<shape type=\"shapegroup\">",
+        "a shapegroup needs an id",
+    );
+    expect(
+        "instance_unknown_group.xml",
+        &wrap("<shape type=\"instance\">\n<ref id=\"nothing\"/>\n</shape>"),
+        5,
+        "<ref",
+        "no shapegroup with id \"nothing\"",
+    );
+    expect(
+        "instance_without_ref.xml",
+        &wrap("<shape type=\"instance\"/>"),
+        4,
+        "<shape type=\"instance\">",
+        "an instance needs one <ref",
+    );
+    expect(
+        "group_emitter.xml",
+        &wrap(
+            "<shape type=\"shapegroup\" id=\"g\">\n<shape type=\"cube\"><emitter type=\"area\"/></shape>\n</shape>\n<shape type=\"instance\"><ref id=\"g\"/></shape>",
+        ),
+        5,
+        "<shape type=\"cube\">",
+        "cannot emit",
+    );
+    expect(
+        "group_nested.xml",
+        &wrap(
+            "<shape type=\"shapegroup\" id=\"g\">\n<shape type=\"instance\"><ref id=\"g\"/></shape>\n</shape>\n<shape type=\"instance\"><ref id=\"g\"/></shape>",
+        ),
+        5,
+        "<shape type=\"instance\">",
+        "cannot hold shapegroups or instances",
+    );
+    expect(
         "rough_plastic_equal_iors.xml",
         &wrap(
             "<bsdf type=\"roughplastic\">\n<float name=\"int_ior\" value=\"1.0\"/>\n<float name=\"ext_ior\" value=\"1.0\"/>\n</bsdf>",

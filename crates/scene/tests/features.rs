@@ -755,6 +755,42 @@ fn cylinder_shape() {
     }
 }
 
+/// A `shapegroup` is drawn only where an `instance` places it: each instance adds the group's
+/// shapes moved by its `to_world` (meshes and spheres alike), the group read once.
+#[test]
+fn shape_groups_and_instances() {
+    let desc = ok(
+        "instances.xml",
+        &wrap(
+            "<shape type=\"shapegroup\" id=\"pair\"><shape type=\"rectangle\"/><shape type=\"sphere\"><point name=\"center\" value=\"0, 0, 2\"/><float name=\"radius\" value=\"0.5\"/></shape></shape>
+<shape type=\"instance\"><ref id=\"pair\"/><transform name=\"to_world\"><translate x=\"10\"/></transform></shape>
+<shape type=\"instance\"><ref id=\"pair\"/><transform name=\"to_world\"><scale value=\"2\"/><translate y=\"-5\"/></transform></shape>",
+        ),
+    );
+    assert_eq!(
+        desc.shapes.len(),
+        4,
+        "two instances of two shapes, the group itself not drawn"
+    );
+    let Geometry::Mesh(first) = &desc.shapes[0].geometry else {
+        panic!("a mesh: {:?}", desc.shapes[0].geometry);
+    };
+    assert!(
+        first
+            .positions
+            .iter()
+            .all(|p| (p.x - 10.0).abs() <= 1.0 && p.z == 0.0)
+    );
+    let Geometry::Sphere(moved) = &desc.shapes[1].geometry else {
+        panic!("a sphere: {:?}", desc.shapes[1].geometry);
+    };
+    assert!(close(moved.center, Vec3::new(10.0, 0.0, 2.0), 1e-6) && moved.radius == 0.5);
+    let Geometry::Sphere(scaled) = &desc.shapes[3].geometry else {
+        panic!("a sphere: {:?}", desc.shapes[3].geometry);
+    };
+    assert!(close(scaled.center, Vec3::new(0.0, -5.0, 4.0), 1e-6) && scaled.radius == 1.0);
+}
+
 /// `orthographic` takes to_world (scaling allowed: it sizes the viewing region) and the
 /// clipping planes; a field of view is an unknown parameter for it.
 #[test]

@@ -2,6 +2,7 @@
 
 pub(crate) mod bsdf;
 pub(crate) mod emitter;
+pub(crate) mod instance;
 pub(crate) mod integrator;
 pub(crate) mod sensor;
 pub(crate) mod shape;

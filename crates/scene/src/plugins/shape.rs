@@ -93,7 +93,7 @@ pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Resu
 }
 
 /// Fails unless `m` is finite and invertible.
-fn check_invertible(m: &DMat4, loc: &Loc) -> Result<()> {
+pub(crate) fn check_invertible(m: &DMat4, loc: &Loc) -> Result<()> {
     let linear = DMat3::from_mat4(*m);
     let scale = linear.x_axis.length() * linear.y_axis.length() * linear.z_axis.length();
     let det = linear.determinant();
@@ -152,7 +152,6 @@ fn mesh_file(params: &mut Params, plugin: &str) -> Result<(MeshDesc, Shading)> {
     Ok((mesh, shading))
 }
 
-/// A sphere placed by `to_world`, which may only rotate, translate and scale uniformly.
 /// The cylinder's `p0` (default origin), `p1` (default +z) and `radius` (default 1) as the
 /// transform of the unit cylinder: Mitsuba's translate(p0) · to_frame(p1 − p0) · scale(r, r, |p1 −
 /// p0|), the frame built around the axis as Mitsuba's `coordinate_system` builds it.
@@ -184,6 +183,7 @@ fn cylinder_frame(params: &mut Params) -> Result<DMat4> {
         * DMat4::from_scale(DVec3::new(radius, radius, length)))
 }
 
+/// A sphere placed by `to_world`, which may only rotate, translate and scale uniformly.
 fn sphere(params: &mut Params, to_world: &DMat4, flip_normals: bool) -> Result<SphereDesc> {
     let center = params.point("center")?.unwrap_or(DVec3::ZERO);
     let radius = params.float_or("radius", 1.0)?;
@@ -192,6 +192,18 @@ fn sphere(params: &mut Params, to_world: &DMat4, flip_normals: bool) -> Result<S
             .loc_of("radius")
             .error(format!("radius must be positive, got {radius}")));
     }
+    place_sphere(center, radius, flip_normals, to_world)
+        .map_err(|message| params.loc_of("to_world").error(message))
+}
+
+/// The sphere of `center` and `radius` moved by `to_world`, or why it cannot be: the transform
+/// may only rotate, translate and scale uniformly, and not mirror.
+pub(crate) fn place_sphere(
+    center: DVec3,
+    radius: f64,
+    flip_normals: bool,
+    to_world: &DMat4,
+) -> std::result::Result<SphereDesc, &'static str> {
     let linear = DMat3::from_mat4(*to_world);
     let gram = linear.transpose() * linear;
     let scale_sq = gram.x_axis.x;
@@ -200,22 +212,16 @@ fn sphere(params: &mut Params, to_world: &DMat4, flip_normals: bool) -> Result<S
         .iter()
         .all(|d| d.abs() <= 1e-5 * scale_sq);
     if !uniform {
-        return Err(params
-            .loc_of("to_world")
-            .error("a sphere's to_world may only rotate, translate and scale uniformly"));
+        return Err("a sphere's to_world may only rotate, translate and scale uniformly");
     }
     if linear.determinant() < 0.0 {
-        return Err(params.loc_of("to_world").error(
-            "a sphere's to_world must not mirror (use flip_normals to turn it inside out)",
-        ));
+        return Err("a sphere's to_world must not mirror (use flip_normals to turn it inside out)");
     }
     let world_center = to_world.transform_point3(center).as_vec3();
     let world_radius = (radius * scale_sq.sqrt()) as f32;
     let radius_ok = world_radius.is_finite() && world_radius > 0.0;
     if !world_center.is_finite() || !radius_ok {
-        return Err(params
-            .loc_of("to_world")
-            .error("the sphere's world-space center or radius is out of range"));
+        return Err("the sphere's world-space center or radius is out of range");
     }
     Ok(SphereDesc {
         center: world_center,
