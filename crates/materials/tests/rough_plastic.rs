@@ -19,6 +19,21 @@ fn coating(kind: MicrofacetKind, alpha: f32, eta: f32) -> (RoughPlastic, Bsdf) {
     (plastic, Bsdf::from(interface))
 }
 
+/// Mean and standard error of `n` samples of an estimator.
+fn mean_and_error(n: usize, mut sample: impl FnMut() -> f64) -> (f64, f64) {
+    let (mut sum, mut sum2) = (0.0_f64, 0.0_f64);
+    for _ in 0..n {
+        let x = sample();
+        sum += x;
+        sum2 += x * x;
+    }
+    let mean = sum / n as f64;
+    (
+        mean,
+        ((sum2 / n as f64 - mean * mean).max(0.0) / n as f64).sqrt(),
+    )
+}
+
 /// Mean and standard error of the energy a rough interface reflects (`reflected`) or lets
 /// through from `wo`, by its own sampling: transmitted weights times η² undo radiance's scale.
 fn interface_energy(
@@ -28,24 +43,15 @@ fn interface_energy(
     n: usize,
     rng: &mut Rng,
 ) -> (f64, f64) {
-    let (mut sum, mut sum2) = (0.0_f64, 0.0_f64);
-    for _ in 0..n {
+    mean_and_error(n, || {
         let (u_lobe, u_dir) = (rng.next_f32(), Vec2::new(rng.next_f32(), rng.next_f32()));
-        let Some(s) = interface.sample(wo, u_lobe, u_dir) else {
-            continue;
-        };
-        if (s.wi.z * wo.z > 0.0) != reflected {
-            continue;
+        match interface.sample(wo, u_lobe, u_dir) {
+            Some(s) if (s.wi.z * wo.z > 0.0) == reflected => {
+                f64::from(s.f.x * s.wi.z.abs() / s.pdf_solid_angle * s.eta * s.eta)
+            }
+            _ => 0.0,
         }
-        let energy = f64::from(s.f.x * s.wi.z.abs() / s.pdf_solid_angle * s.eta * s.eta);
-        sum += energy;
-        sum2 += energy * energy;
-    }
-    let mean = sum / n as f64;
-    (
-        mean,
-        ((sum2 / n as f64 - mean * mean).max(0.0) / n as f64).sqrt(),
-    )
+    })
 }
 
 #[test]
@@ -82,23 +88,18 @@ fn internal_reflectance_is_mitsubas_estimate_of_the_diffuse_integral() {
     ] {
         let (plastic, interface) = coating(kind, alpha, 1.49);
         let n = 1_600_000;
-        let (mut sum, mut sum2) = (0.0_f64, 0.0_f64);
-        for _ in 0..n {
+        let (integral, error) = mean_and_error(n, || {
             // From inside (below the interface), cosine-distributed: μ = √u.
             let mu = rng.next_f32().sqrt();
             let phi = std::f32::consts::TAU * rng.next_f32();
             let sin = (1.0 - mu * mu).sqrt();
             let wo = Vec3::new(sin * phi.cos(), sin * phi.sin(), -mu);
             let (u_lobe, u_dir) = (rng.next_f32(), Vec2::new(rng.next_f32(), rng.next_f32()));
-            let energy = match interface.sample(wo, u_lobe, u_dir) {
+            match interface.sample(wo, u_lobe, u_dir) {
                 Some(s) if s.wi.z < 0.0 => f64::from(s.f.x * s.wi.z.abs() / s.pdf_solid_angle),
                 _ => 0.0,
-            };
-            sum += energy;
-            sum2 += energy * energy;
-        }
-        let integral = sum / n as f64;
-        let error = ((sum2 / n as f64 - integral * integral) / n as f64).sqrt();
+            }
+        });
         let estimate = f64::from(plastic.internal_reflectance());
         println!(
             "figure: {kind:?} {alpha}: R_int {estimate:.5}, sampled integral {integral:.5} ± {error:.5}"
@@ -124,17 +125,11 @@ fn white_rough_plastic_loses_only_the_coatings_masking() {
             let theta = degrees.to_radians();
             let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
             let n = 100_000;
-            let (mut sum, mut sum2) = (0.0_f64, 0.0_f64);
-            for _ in 0..n {
+            let (mean, error) = mean_and_error(n, || {
                 let (u_lobe, u_dir) = (rng.next_f32(), Vec2::new(rng.next_f32(), rng.next_f32()));
-                if let Some(s) = bsdf.sample(wo, u_lobe, u_dir) {
-                    let w = f64::from(s.f.x * s.wi.z / s.pdf_solid_angle);
-                    sum += w;
-                    sum2 += w * w;
-                }
-            }
-            let mean = sum / n as f64;
-            let error = ((sum2 / n as f64 - mean * mean) / n as f64).sqrt();
+                bsdf.sample(wo, u_lobe, u_dir)
+                    .map_or(0.0, |s| f64::from(s.f.x * s.wi.z / s.pdf_solid_angle))
+            });
             println!("figure: {kind:?} 0.05 white at {degrees} degrees: albedo {mean:.4}");
             assert!(
                 mean <= 1.0 + 5.0 * error && mean > 0.94,
@@ -169,20 +164,16 @@ fn nearly_smooth_rough_plastic_is_the_smooth_plastic() {
         let theta = degrees.to_radians();
         let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
         let n = 100_000;
-        let (mut sum, mut sum2) = (0.0_f64, 0.0_f64);
-        for _ in 0..n {
+        let (mean, error) = mean_and_error(n, || {
             let (u_lobe, u_dir) = (rng.next_f32(), Vec2::new(rng.next_f32(), rng.next_f32()));
-            if let Some(s) = rough.sample(wo, u_lobe, u_dir) {
+            match rough.sample(wo, u_lobe, u_dir) {
                 // The glossy lobe's share: directions within 1 degree of the mirror direction.
-                if s.wi.dot(Vec3::new(-wo.x, -wo.y, wo.z)) > 1.0_f32.to_radians().cos() {
-                    let w = f64::from(s.f.x * s.wi.z / s.pdf_solid_angle);
-                    sum += w;
-                    sum2 += w * w;
+                Some(s) if s.wi.dot(Vec3::new(-wo.x, -wo.y, wo.z)) > 1.0_f32.to_radians().cos() => {
+                    f64::from(s.f.x * s.wi.z / s.pdf_solid_angle)
                 }
+                _ => 0.0,
             }
-        }
-        let mean = sum / n as f64;
-        let error = ((sum2 / n as f64 - mean * mean) / n as f64).sqrt();
+        });
         let fresnel = f64::from(fresnel_dielectric(wo.z, 1.49).reflectance);
         assert!(
             (mean - fresnel).abs() <= 5.0 * error + 2e-3,

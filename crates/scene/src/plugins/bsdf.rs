@@ -203,33 +203,31 @@ impl<'a> BsdfTable<'a> {
                 specular_reflectance: specular_reflectance(&mut params)?,
                 specular_transmittance: specular_transmittance(&mut params)?,
             },
-            "plastic" => BsdfDesc::Plastic {
-                int_ior: ior(&mut params, "int_ior", 1.49)? as f32,
-                ext_ior: ior(&mut params, "ext_ior", 1.000277)? as f32,
-                diffuse_reflectance: rgb(
-                    &mut params,
-                    "diffuse_reflectance",
-                    ColorKind::Reflectance,
-                    0.5,
-                )?,
-                specular_reflectance: specular_reflectance(&mut params)?,
-                nonlinear: params.boolean_or("nonlinear", false)?,
-            },
-            "roughplastic" => {
-                let (int_ior, ext_ior) = distinct_iors(&mut params, 1.49)?;
-                BsdfDesc::RoughPlastic {
-                    distribution: distribution(&mut params)?,
-                    alpha: alpha(&mut params)?,
+            "plastic" => {
+                let int_ior = ior(&mut params, "int_ior", 1.49)? as f32;
+                let ext_ior = ior(&mut params, "ext_ior", 1.000277)? as f32;
+                let (diffuse_reflectance, specular_reflectance, nonlinear) = coating(&mut params)?;
+                BsdfDesc::Plastic {
                     int_ior,
                     ext_ior,
-                    diffuse_reflectance: rgb(
-                        &mut params,
-                        "diffuse_reflectance",
-                        ColorKind::Reflectance,
-                        0.5,
-                    )?,
-                    specular_reflectance: specular_reflectance(&mut params)?,
-                    nonlinear: params.boolean_or("nonlinear", false)?,
+                    diffuse_reflectance,
+                    specular_reflectance,
+                    nonlinear,
+                }
+            }
+            "roughplastic" => {
+                let (int_ior, ext_ior) = distinct_iors(&mut params, 1.49)?;
+                let distribution = distribution(&mut params)?;
+                let alpha = alpha(&mut params)?;
+                let (diffuse_reflectance, specular_reflectance, nonlinear) = coating(&mut params)?;
+                BsdfDesc::RoughPlastic {
+                    distribution,
+                    alpha,
+                    int_ior,
+                    ext_ior,
+                    diffuse_reflectance,
+                    specular_reflectance,
+                    nonlinear,
                 }
             }
             _ => return Err(unknown_type(node, &SUPPORTED)),
@@ -562,6 +560,16 @@ fn alpha(params: &mut Params) -> Result<f32> {
             .error(format!("roughness must be positive, got {value}")));
     }
     Ok(value as f32)
+}
+
+/// A coated material's `diffuse_reflectance` (default 0.5), `specular_reflectance` (default 1)
+/// and `nonlinear` (default false), as `plastic` and `roughplastic` read them.
+fn coating(params: &mut Params) -> Result<(glam::Vec3, glam::Vec3, bool)> {
+    Ok((
+        rgb(params, "diffuse_reflectance", ColorKind::Reflectance, 0.5)?,
+        specular_reflectance(params)?,
+        params.boolean_or("nonlinear", false)?,
+    ))
 }
 
 /// Mitsuba's `specular_reflectance` multiplier (default 1).
