@@ -26,6 +26,7 @@
 //!     center: Vec3::ZERO,
 //!     radius: 1.0,
 //!     flip_normals: false,
+//!     to_local: glam::Mat3::IDENTITY,
 //! })]);
 //! let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z);
 //! let hit = accel.intersect(&ray, f32::INFINITY).expect("the ray points at the sphere");

@@ -2,7 +2,7 @@
 
 use std::f32::consts::{PI, TAU};
 
-use glam::{Vec2, Vec3, Vec3A};
+use glam::{Mat3, Vec2, Vec3, Vec3A};
 
 use crate::Aabb;
 
@@ -15,6 +15,9 @@ pub struct Sphere {
     pub radius: f32,
     /// When true the geometric normal points inwards.
     pub flip_normals: bool,
+    /// The rotation from world directions to the sphere's own frame, in which its surface
+    /// coordinates are defined ([`Self::uv`]): the inverse of its `to_world`'s rotation.
+    pub to_local: Mat3,
 }
 
 impl Sphere {
@@ -132,6 +135,7 @@ mod tests {
             center: Vec3::ONE,
             radius: 2.0,
             flip_normals: false,
+            to_local: glam::Mat3::IDENTITY,
         };
         assert_eq!(s.normal(Vec3::new(1.0, 3.0, 1.0)), Vec3::Y);
         s.flip_normals = true;

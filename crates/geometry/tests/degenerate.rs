@@ -54,21 +54,25 @@ fn only_proper_primitives_are_hit_and_every_field_is_finite() {
             center: Vec3::new(0.5, 0.5, 2.0),
             radius: 0.0,
             flip_normals: false,
+            to_local: glam::Mat3::IDENTITY,
         },
         Sphere {
             center: Vec3::new(0.5, 0.5, 2.0),
             radius: -1.0,
             flip_normals: false,
+            to_local: glam::Mat3::IDENTITY,
         },
         Sphere {
             center: Vec3::new(f32::NAN, 0.5, 2.0),
             radius: 1.0,
             flip_normals: false,
+            to_local: glam::Mat3::IDENTITY,
         },
         Sphere {
             center: Vec3::new(0.5, 0.5, 2.0),
             radius: f32::INFINITY,
             flip_normals: false,
+            to_local: glam::Mat3::IDENTITY,
         },
     ];
     let mut shapes = vec![Shape::Mesh(degenerate_mesh())];

@@ -62,6 +62,7 @@ fn random_scene(rng: &mut Pcg32) -> Vec<Shape> {
             center: rng.in_cube(),
             radius: rng.range(0.02, 0.15),
             flip_normals: i % 2 == 1,
+            to_local: glam::Mat3::IDENTITY,
         })
     }));
     shapes.push(Shape::Mesh(transformed(
@@ -288,6 +289,7 @@ fn accel_can_be_shared_between_threads() {
         center: Vec3::ZERO,
         radius: 1.0,
         flip_normals: false,
+        to_local: glam::Mat3::IDENTITY,
     })]);
     let hits: Vec<bool> = std::thread::scope(|scope| {
         let workers: Vec<_> = [Vec3::X, Vec3::Y]

@@ -67,6 +67,7 @@ fn objects(placement: &Placement) -> [(&'static str, Shape); 2] {
                 center: placement.offset,
                 radius: placement.scale,
                 flip_normals: false,
+                to_local: glam::Mat3::IDENTITY,
             }),
         ),
         (
@@ -276,6 +277,7 @@ fn shadow_rays_inside_a_sphere_see_nothing() {
             center: placement.offset,
             radius: placement.scale,
             flip_normals: true,
+            to_local: glam::Mat3::IDENTITY,
         };
         let accel = Accel::new(vec![Shape::Sphere(sphere)]);
         for i in 0..3000 {

@@ -178,6 +178,7 @@ fn runtime_shape(shape: &ShapeDesc) -> Shape {
             center: s.center,
             radius: s.radius,
             flip_normals: s.flip_normals,
+            to_local: s.to_local,
         }),
     }
 }

@@ -52,7 +52,8 @@ fn mitsuba_defaults() {
         Geometry::Sphere(SphereDesc {
             center: Vec3::ZERO,
             radius: 1.0,
-            flip_normals: false
+            flip_normals: false,
+            to_local: glam::Mat3::IDENTITY,
         })
     );
     assert_eq!(
@@ -955,6 +956,9 @@ fn sphere_flip_and_rotation() {
     assert!(close(s.center, Vec3::new(-3.0, 3.0, 3.0), 1e-5));
     assert!((s.radius - 3.0).abs() < 1e-6);
     assert!(s.flip_normals);
+    // Its own frame, in which its uv are defined, is turned with it: world +y is its +x.
+    assert!(close(s.to_local * Vec3::Y, Vec3::X, 1e-6));
+    assert!(close(s.to_local * Vec3::Z, Vec3::Z, 1e-6));
 }
 
 #[test]

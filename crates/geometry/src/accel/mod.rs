@@ -131,7 +131,10 @@ impl Accel {
                     uv[i0] * b.x + uv[i1] * b.y + uv[i2] * b.z
                 })
             }
-            Shape::Sphere(sphere) => Sphere::uv(if sphere.flip_normals { -hit.ng } else { hit.ng }),
+            Shape::Sphere(sphere) => {
+                let outward = if sphere.flip_normals { -hit.ng } else { hit.ng };
+                Sphere::uv(sphere.to_local * outward)
+            }
         }
     }
 

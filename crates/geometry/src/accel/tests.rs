@@ -30,6 +30,7 @@ fn random_scene(rng: &mut TestRng, triangles: usize, spheres: usize) -> Vec<Shap
             center: rng.vec(),
             radius: 0.02 + 0.1 * rng.f32(),
             flip_normals: false,
+            to_local: glam::Mat3::IDENTITY,
         })
     }));
     shapes
@@ -196,6 +197,7 @@ fn coincident_primitives_build_fast_and_traverse_correctly() {
             center: Vec3::new(0.3, 0.3, -0.3),
             radius: 0.1,
             flip_normals: false,
+            to_local: glam::Mat3::IDENTITY,
         })
     }));
     let start = std::time::Instant::now();

@@ -1,6 +1,6 @@
 //! Descriptions of shapes in world space.
 
-use glam::{Vec2, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 
 use super::material::AreaEmitterDesc;
 
@@ -34,6 +34,9 @@ pub struct SphereDesc {
     /// Whether the normals point inwards (`flip_normals`), which also turns the front side of a
     /// one-sided BSDF or area light inwards.
     pub flip_normals: bool,
+    /// The rotation from world directions to the sphere's own frame (the inverse of its
+    /// `to_world`'s rotation), in which Mitsuba defines its surface coordinates.
+    pub to_local: Mat3,
 }
 
 /// The geometry of a shape.

@@ -28,29 +28,37 @@ pub(crate) fn rectangle() -> MeshDesc {
     }
 }
 
-/// `cube`: [-1, 1]³ with outward faces, 4 vertices and 2 triangles per face, each face's uv
-/// covering [0, 1]².
+/// `cube`: [-1, 1]³ with outward faces in Mitsuba's layout, so that textures land where
+/// Mitsuba puts them: per face (bottom, top, +x, +z, −x, −z) 4 vertices with uv (0, 1), (1, 1),
+/// (1, 0), (0, 0) and the triangles (0, 1, 2), (3, 0, 2); a face's point is n + (2u − 1) U +
+/// (2v − 1) V for its normal n and the directions U, V of [`CUBE_FACES`].
 pub(crate) fn cube() -> MeshDesc {
     let mut mesh = MeshDesc::default();
     let mut uvs = Vec::new();
-    for axis in 0..3 {
-        for sign in [-1.0f32, 1.0] {
-            // u × v = n for the outward normal n = sign · e_axis.
-            let n = Vec3::AXES[axis] * sign;
-            let u = Vec3::AXES[(axis + 1) % 3] * sign;
-            let v = Vec3::AXES[(axis + 2) % 3];
-            let base = mesh.positions.len() as u32;
-            for (du, dv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                mesh.positions.push(n + u * du + v * dv);
-                uvs.push(Vec2::new((du + 1.0) / 2.0, (dv + 1.0) / 2.0));
-            }
-            mesh.triangles
-                .extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+    for [n, u_dir, v_dir] in CUBE_FACES {
+        let base = mesh.positions.len() as u32;
+        for uv in [Vec2::new(0.0, 1.0), Vec2::ONE, Vec2::X, Vec2::ZERO] {
+            let (du, dv) = (2.0 * uv.x - 1.0, 2.0 * uv.y - 1.0);
+            mesh.positions.push(n + u_dir * du + v_dir * dv);
+            uvs.push(uv);
         }
+        mesh.triangles
+            .extend([[base, base + 1, base + 2], [base + 3, base, base + 2]]);
     }
     mesh.uvs = Some(uvs);
     mesh
 }
+
+/// The cube's faces as Mitsuba orders them: outward normal, and the directions in which u and v
+/// grow.
+const CUBE_FACES: [[Vec3; 3]; 6] = [
+    [Vec3::NEG_Y, Vec3::Z, Vec3::X],
+    [Vec3::Y, Vec3::NEG_X, Vec3::NEG_Z],
+    [Vec3::X, Vec3::Y, Vec3::NEG_Z],
+    [Vec3::Z, Vec3::Y, Vec3::X],
+    [Vec3::NEG_X, Vec3::Y, Vec3::Z],
+    [Vec3::NEG_Z, Vec3::NEG_Y, Vec3::X],
+];
 
 /// `disk`: the unit disk in the z = 0 plane facing +z, as a fan of [`DISK_SEGMENTS`] triangles.
 ///
@@ -130,6 +138,46 @@ mod tests {
             sum += cross / 2.0;
         }
         (area, sum)
+    }
+
+    /// The uv of the cube's point `p` on the face that `p` lies on, interpolated as a hit's.
+    fn cube_uv_at(p: Vec3) -> Vec2 {
+        let mesh = cube();
+        let uvs = mesh.uvs.as_ref().unwrap();
+        for tri in &mesh.triangles {
+            let [a, b, c] = tri.map(|i| mesh.positions[i as usize]);
+            let n = (b - a).cross(c - a);
+            let area = |x: Vec3, y: Vec3, z: Vec3| (y - x).cross(z - x).dot(n) / n.length_squared();
+            let bary = [area(p, b, c), area(a, p, c), area(a, b, p)];
+            if (p - a).dot(n).abs() < 1e-6 && bary.iter().all(|&w| w >= -1e-6) {
+                return tri
+                    .iter()
+                    .zip(bary)
+                    .map(|(&i, w)| uvs[i as usize] * w)
+                    .sum();
+            }
+        }
+        panic!("{p} is not on the cube");
+    }
+
+    #[test]
+    fn cube_uvs_are_mitsubas() {
+        // Mitsuba 3.9.1 (scalar_rgb): `si.uv` of rays hitting its cube at each point, one per face.
+        let mitsuba = [
+            (Vec3::new(0.5, -1.0, 0.25), Vec2::new(0.625, 0.75)),
+            (Vec3::new(0.3, 1.0, -0.6), Vec2::new(0.35, 0.8)),
+            (Vec3::new(1.0, 0.2, 0.7), Vec2::new(0.6, 0.15)),
+            (Vec3::new(-1.0, -0.4, 0.1), Vec2::new(0.3, 0.55)),
+            (Vec3::new(0.1, 0.8, 1.0), Vec2::new(0.9, 0.55)),
+            (Vec3::new(-0.7, 0.2, -1.0), Vec2::new(0.4, 0.15)),
+        ];
+        for (p, uv) in mitsuba {
+            let got = cube_uv_at(p);
+            assert!(
+                (got - uv).abs().max_element() < 1e-5,
+                "{got} at {p}, Mitsuba {uv}"
+            );
+        }
     }
 
     #[test]

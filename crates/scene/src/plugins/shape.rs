@@ -223,9 +223,12 @@ pub(crate) fn place_sphere(
     if !world_center.is_finite() || !radius_ok {
         return Err("the sphere's world-space center or radius is out of range");
     }
+    // The rotation is the linear part over its scale; its inverse is its transpose.
+    let to_local = (linear / scale_sq.sqrt()).transpose().as_mat3();
     Ok(SphereDesc {
         center: world_center,
         radius: world_radius,
         flip_normals,
+        to_local,
     })
 }
