@@ -224,14 +224,18 @@ fn veach_regions(subject: &Subject) -> Vec<Option<(usize, usize)>> {
         .collect();
     let (width, height) = (scene.desc.film.width, scene.desc.film.height);
     let mut counters = integrators::RayCounters::default();
+    let mut slot = integrators::BsdfSlot::default();
     (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| {
             let film = glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
             let camera = scene.camera.generate_ray(film, glam::Vec2::ZERO);
-            let surface = scene
-                .world
-                .intersect_within(&camera.ray, camera.t_max, &mut counters)?;
+            let surface = scene.world.intersect_within(
+                &camera.ray,
+                camera.t_max,
+                &mut counters,
+                &mut slot,
+            )?;
             let plate = plates.iter().position(|&s| s == surface.hit.shape)?;
             Some((plate, (4 * x / width) as usize))
         })

@@ -22,4 +22,4 @@ pub use light_tracer::{CameraConnection, LightTracer};
 pub use path::PathIntegrator;
 pub use ray_log::{RayLog, ShadowRay};
 pub use settings::{DirectSamples, LightSelectionMode, Mis, PathSettings, RussianRoulette};
-pub use world::{Checkerboard, MaterialId, SurfaceHit, World};
+pub use world::{BsdfSlot, Checkerboard, MaterialId, MaterialTexture, SurfaceHit, World};

@@ -24,7 +24,7 @@
 //! and roulette (1D, with roulette from its start depth on).
 
 use crate::optional_draw::next_1d_if;
-use crate::{PathSettings, RayTally, RussianRoulette, SurfaceHit, World};
+use crate::{BsdfSlot, PathSettings, RayTally, RussianRoulette, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::Light;
@@ -125,8 +125,9 @@ impl LightTracer {
         // The vertex about to be found, counted from the light (1 = the first hit). A connection
         // at vertex j makes a path of j + 1 vertices after the camera (j of them, and the light).
         let mut vertex = 1;
+        let mut slot = BsdfSlot::default();
         while vertex < self.max_depth {
-            let Some(surface) = world.intersect(&ray, tally) else {
+            let Some(surface) = world.intersect(&ray, tally, &mut slot) else {
                 return;
             };
             let towards_light = -ray.dir;

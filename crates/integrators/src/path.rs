@@ -20,7 +20,7 @@ use crate::optional_draw::next_1d_if;
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{DirectSamples, LightSelectionMode, Mis, PathSettings};
 use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf};
-use crate::{CameraRay, RayTally, SurfaceHit, World};
+use crate::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
@@ -136,14 +136,15 @@ impl PathIntegrator {
         // Whether every bounce so far was by a delta lobe: what the path finds next, neither light
         // sampling nor the light tracer can reach.
         let mut seen_through_delta = true;
+        let mut slot = BsdfSlot::default();
         for depth in 1..=max_depth {
             let hidden = depth == 1 && settings.hide_emitters;
             let found = if hidden {
-                world.intersect_past_emitters(&camera_ray, counters)
+                world.intersect_past_emitters(&camera_ray, counters, &mut slot)
             } else if depth == 1 {
-                world.intersect_within(&ray, camera_ray.t_max, counters)
+                world.intersect_within(&ray, camera_ray.t_max, counters, &mut slot)
             } else {
-                world.intersect(&ray, counters)
+                world.intersect(&ray, counters, &mut slot)
             };
             let Some(surface) = found else {
                 if !hidden {
@@ -243,6 +244,7 @@ impl PathIntegrator {
             bsdf: samples.bsdf as f32,
         };
         let mut radiance = Vec3::ZERO;
+        let mut slot = BsdfSlot::default();
         if self.settings.sample_lights {
             for _ in 0..samples.light {
                 let u_choice = next_1d_if(sampler, self.draws_light_choice);
@@ -273,7 +275,7 @@ impl PathIntegrator {
                 surface.frame.to_world(next.wi),
             );
             let weight = next.weight / counts.bsdf;
-            radiance += match world.intersect(&ray, counters) {
+            radiance += match world.intersect(&ray, counters, &mut slot) {
                 Some(found) => self.emission_found(
                     world,
                     &found,

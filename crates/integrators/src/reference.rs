@@ -9,7 +9,7 @@
 use crate::delta_lights::delta_lights;
 use crate::settings::DirectSamples;
 use crate::uniform_direction::sample_without_importance;
-use crate::{CameraRay, RayTally, World};
+use crate::{BsdfSlot, CameraRay, RayTally, World};
 use geometry::Ray;
 use glam::Vec3;
 use sampling::Sampler;
@@ -52,14 +52,15 @@ pub fn radiance(
     // Whether every bounce so far was by a delta lobe: emission found next is seen by the shading
     // normal, as the path tracer sees what neither light sampling nor light tracing reaches.
     let mut seen_through_delta = true;
+    let mut slot = BsdfSlot::default();
     for depth in 1..=max_depth {
         let hidden = depth == 1 && settings.hide_emitters;
         let found = if hidden {
-            world.intersect_past_emitters(&camera_ray, counters)
+            world.intersect_past_emitters(&camera_ray, counters, &mut slot)
         } else if depth == 1 {
-            world.intersect_within(&ray, camera_ray.t_max, counters)
+            world.intersect_within(&ray, camera_ray.t_max, counters, &mut slot)
         } else {
-            world.intersect(&ray, counters)
+            world.intersect(&ray, counters, &mut slot)
         };
         let Some(surface) = found else {
             if !hidden {

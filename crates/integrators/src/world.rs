@@ -5,8 +5,9 @@ use crate::{CameraRay, RayTally};
 use geometry::{Accel, Hit, Ray};
 use glam::{Affine2, Vec3};
 use lights::{Light, LightSample};
-use materials::Bsdf;
+use materials::{BitmapTexture, Bsdf};
 use sampling::Frame;
+use std::sync::Arc;
 
 /// Index into [`World::materials`].
 pub type MaterialId = u32;
@@ -33,13 +34,29 @@ impl Checkerboard {
     }
 }
 
+/// A material's textured parameter: how the BSDF a hit sees depends on the surface coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialTexture {
+    /// The material's BSDF on even squares and another material's on odd ones.
+    Checkerboard(Checkerboard),
+    /// The diffuse albedo ([`Bsdf::with_diffuse_reflectance`]) of the BSDF the hit sees is the
+    /// bitmap's value there.
+    DiffuseReflectance(Arc<BitmapTexture>),
+}
+
+/// Room for the BSDF of a textured hit, which exists only for that hit: the integrators keep
+/// one per path and [`World::intersect`] fills it when the surface it finds is textured, so that
+/// untextured hits cost nothing for it.
+#[derive(Debug, Default)]
+pub struct BsdfSlot(Option<Bsdf>);
+
 /// The renderable scene: one acceleration structure over all shapes, a material per shape, and
 /// the lights, some of which are attached to shapes.
 pub struct World {
     accel: Accel,
     materials: Vec<Bsdf>,
-    /// Per material, its checkerboard if it has one; empty when no material has.
-    checkerboards: Vec<Option<Checkerboard>>,
+    /// Per material, its texture if it has one; empty when no material has.
+    textures: Vec<Option<MaterialTexture>>,
     shape_material: Vec<MaterialId>,
     shape_light: Vec<Option<u32>>,
     lights: Vec<Light>,
@@ -124,7 +141,7 @@ impl World {
         Ok(Self {
             accel,
             materials,
-            checkerboards: Vec::new(),
+            textures: Vec::new(),
             shape_material,
             shape_light,
             lights,
@@ -160,45 +177,97 @@ impl World {
         &self.materials
     }
 
-    /// Gives materials checkerboards, one entry per material (`None` for a plain one); an error
-    /// when the count differs or a checkerboard's `odd` material is out of range or has one itself.
-    pub fn set_checkerboards(
-        &mut self,
-        checkerboards: Vec<Option<Checkerboard>>,
-    ) -> Result<(), String> {
-        if checkerboards.len() != self.materials.len() {
+    /// Gives materials textures, one entry per material (`None` for a plain one); an error when
+    /// the count differs, a checkerboard's `odd` material is out of range or textured itself, or
+    /// a textured diffuse reflectance belongs to a BSDF without one (see
+    /// [`Bsdf::with_diffuse_reflectance`]; a [`materials::TwoSided`] is asked for each side).
+    pub fn set_textures(&mut self, textures: Vec<Option<MaterialTexture>>) -> Result<(), String> {
+        if textures.len() != self.materials.len() {
             return Err(format!(
-                "{} checkerboard entries for {} materials",
-                checkerboards.len(),
+                "{} texture entries for {} materials",
+                textures.len(),
                 self.materials.len()
             ));
         }
-        for (i, checker) in checkerboards.iter().enumerate() {
-            if let Some(c) = checker {
-                let odd = c.odd as usize;
-                if odd >= self.materials.len() || checkerboards[odd].is_some() {
-                    return Err(format!(
-                        "material {i}: its checkerboard's material {odd} is invalid"
-                    ));
+        for (i, texture) in textures.iter().enumerate() {
+            match texture {
+                Some(MaterialTexture::Checkerboard(c)) => {
+                    let odd = c.odd as usize;
+                    if odd >= self.materials.len() || textures[odd].is_some() {
+                        return Err(format!(
+                            "material {i}: its checkerboard's material {odd} is invalid"
+                        ));
+                    }
                 }
+                Some(MaterialTexture::DiffuseReflectance(_)) => {
+                    let sides = match &self.materials[i] {
+                        Bsdf::TwoSided(two_sided) => [two_sided.front(), two_sided.back()],
+                        bsdf => [bsdf, bsdf],
+                    };
+                    if sides
+                        .iter()
+                        .any(|side| side.with_diffuse_reflectance(Vec3::ONE).is_none())
+                    {
+                        return Err(format!(
+                            "material {i}: a textured reflectance needs a diffuse or plastic BSDF"
+                        ));
+                    }
+                }
+                None => {}
             }
         }
-        self.checkerboards = if checkerboards.iter().any(Option::is_some) {
-            checkerboards
+        self.textures = if textures.iter().any(Option::is_some) {
+            textures
         } else {
             Vec::new()
         };
         Ok(())
     }
 
-    /// The material `hit` sees of `material`: its checkerboard's odd one on an odd square. Kept
-    /// out of line, so that scenes without checkerboards pay one test per hit for them.
+    /// The BSDF a ray along `dir` sees of `material`, and its shading frame (`frame` unless the
+    /// back of a [`materials::TwoSided`] faces the ray).
+    #[inline(always)]
+    fn facing(&self, material: MaterialId, frame: Frame, dir: Vec3) -> (&Bsdf, Frame) {
+        match &self.materials[material as usize] {
+            Bsdf::TwoSided(two_sided) => match two_sided.facing(frame.to_local(-dir)) {
+                (side, true) => (side, frame.mirrored()),
+                (side, false) => (side, frame),
+            },
+            bsdf => (bsdf, frame),
+        }
+    }
+
+    /// [`Self::facing`] with `material`'s texture applied at `hit`: a checkerboard's odd
+    /// material on an odd square, a bitmap's reflectance put into `slot`. Kept out of line, so
+    /// that scenes without textures pay one test per hit for them.
     #[cold]
     #[inline(never)]
-    fn checkered(&self, material: MaterialId, hit: &Hit) -> MaterialId {
-        match &self.checkerboards[material as usize] {
-            Some(checker) if checker.is_odd(self.accel.uv(hit)) => checker.odd,
-            _ => material,
+    fn textured_facing<'s>(
+        &'s self,
+        material: MaterialId,
+        hit: &Hit,
+        frame: Frame,
+        dir: Vec3,
+        slot: &'s mut BsdfSlot,
+    ) -> (&'s Bsdf, Frame) {
+        match &self.textures[material as usize] {
+            Some(MaterialTexture::Checkerboard(checker)) => {
+                let chosen = if checker.is_odd(self.accel.uv(hit)) {
+                    checker.odd
+                } else {
+                    material
+                };
+                self.facing(chosen, frame, dir)
+            }
+            Some(MaterialTexture::DiffuseReflectance(bitmap)) => {
+                let (side, frame) = self.facing(material, frame, dir);
+                let reflectance = bitmap.eval(self.accel.uv(hit));
+                match side.with_diffuse_reflectance(reflectance) {
+                    Some(textured) => (slot.0.insert(textured), frame),
+                    None => (side, frame),
+                }
+            }
+            None => self.facing(material, frame, dir),
         }
     }
 
@@ -213,42 +282,51 @@ impl World {
         &self.accel
     }
 
-    /// The closest surface along `ray`, told to `tally` as one closest-hit ray.
+    /// The closest surface along `ray`, told to `tally` as one closest-hit ray; a textured
+    /// surface's BSDF is put into `slot`.
     #[inline(always)]
-    pub fn intersect(&self, ray: &Ray, tally: &mut impl RayTally) -> Option<SurfaceHit<'_>> {
-        self.intersect_within(ray, f32::INFINITY, tally)
+    pub fn intersect<'s>(
+        &'s self,
+        ray: &Ray,
+        tally: &mut impl RayTally,
+        slot: &'s mut BsdfSlot,
+    ) -> Option<SurfaceHit<'s>> {
+        self.intersect_within(ray, f32::INFINITY, tally, slot)
     }
 
     /// The closest surface along `ray` nearer than `t_max` (world units), told to `tally` as one
-    /// closest-hit ray.
+    /// closest-hit ray; a textured surface's BSDF is put into `slot`.
     #[inline(always)]
-    pub fn intersect_within(
-        &self,
+    pub fn intersect_within<'s>(
+        &'s self,
         ray: &Ray,
         t_max: f32,
         tally: &mut impl RayTally,
-    ) -> Option<SurfaceHit<'_>> {
+        slot: &'s mut BsdfSlot,
+    ) -> Option<SurfaceHit<'s>> {
         tally.closest_ray(ray);
         let hit = self.accel.intersect(ray, t_max)?;
+        Some(self.surface(hit, ray.dir, slot))
+    }
+
+    /// What shading needs of `hit`, found along the direction `dir`; a textured surface's BSDF
+    /// is put into `slot`.
+    #[inline(always)]
+    fn surface<'s>(&'s self, hit: Hit, dir: Vec3, slot: &'s mut BsdfSlot) -> SurfaceHit<'s> {
         let shape = hit.shape as usize;
         let frame = Frame::from_normal(hit.ns);
-        let mut material = self.shape_material[shape];
-        if !self.checkerboards.is_empty() {
-            material = self.checkered(material, &hit);
-        }
-        let (bsdf, frame) = match &self.materials[material as usize] {
-            Bsdf::TwoSided(two_sided) => match two_sided.facing(frame.to_local(-ray.dir)) {
-                (side, true) => (side, frame.mirrored()),
-                (side, false) => (side, frame),
-            },
-            bsdf => (bsdf, frame),
+        let material = self.shape_material[shape];
+        let (bsdf, frame) = if self.textures.is_empty() {
+            self.facing(material, frame, dir)
+        } else {
+            self.textured_facing(material, &hit, frame, dir, slot)
         };
-        Some(SurfaceHit {
+        SurfaceHit {
             hit,
             frame,
             bsdf,
             light: self.shape_light[shape],
-        })
+        }
     }
 
     /// The first surface along `camera_ray` (within its far clip) that does not emit, passing
@@ -256,21 +334,24 @@ impl World {
     /// ray): how
     /// Mitsuba 3's `hide_emitters` hides emitters from the camera, so that what lies behind a
     /// hidden light shows (Mitsuba 3's `skip_area_emitters`).
+    /// A textured surface's BSDF is put into `slot`.
     #[inline]
-    pub fn intersect_past_emitters(
-        &self,
+    pub fn intersect_past_emitters<'s>(
+        &'s self,
         camera_ray: &CameraRay,
         tally: &mut impl RayTally,
-    ) -> Option<SurfaceHit<'_>> {
+        slot: &'s mut BsdfSlot,
+    ) -> Option<SurfaceHit<'s>> {
         let mut ray = camera_ray.ray;
         let mut t_max = camera_ray.t_max;
         loop {
-            let surface = self.intersect_within(&ray, t_max, tally)?;
-            if surface.light.is_none() {
-                return Some(surface);
+            tally.closest_ray(&ray);
+            let hit = self.accel.intersect(&ray, t_max)?;
+            if self.shape_light[hit.shape as usize].is_none() {
+                return Some(self.surface(hit, ray.dir, slot));
             }
             // Mitsuba's rays past an emitter are not clipped again.
-            ray = Ray::spawn(surface.hit.p, surface.hit.ng, ray.dir);
+            ray = Ray::spawn(hit.p, hit.ng, ray.dir);
             t_max = f32::INFINITY;
         }
     }

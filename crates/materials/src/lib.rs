@@ -27,6 +27,7 @@
 
 #![warn(missing_docs)]
 
+mod bitmap;
 mod blend;
 mod bsdf;
 mod conductor;
@@ -44,6 +45,7 @@ mod special;
 mod thin_dielectric;
 mod two_sided;
 
+pub use bitmap::{BitmapTexture, TextureFilter, TextureWrap};
 pub use blend::Blend;
 pub use bsdf::{Bsdf, BsdfSample};
 pub use conductor::Conductor;

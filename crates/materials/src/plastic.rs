@@ -28,6 +28,9 @@ pub struct Plastic {
     inv_eta_sqr: f32,
     /// ρ′: the base's reflectance with the coating's internal reflections summed, RGB.
     base_through_coating: Vec3,
+    /// F_dr,int, the coating's diffuse Fresnel reflectance from inside.
+    internal_reflectance: f32,
+    nonlinear: bool,
     specular_reflectance: Vec3,
     specular_sampling_weight: f32,
 }
@@ -52,12 +55,28 @@ impl Plastic {
             eta,
             inv_eta_sqr: 1.0 / (eta * eta),
             base_through_coating,
+            internal_reflectance: internal,
+            nonlinear,
             specular_reflectance,
             specular_sampling_weight: specular_sampling_weight(
                 diffuse_reflectance,
                 specular_reflectance,
             ),
         })
+    }
+
+    /// The same coating over a base of RGB albedo `diffuse_reflectance`, keeping this one's
+    /// lobe-sampling weight: how a textured base is shaded, Mitsuba computing the weight once
+    /// from the texture's mean.
+    pub fn with_diffuse_reflectance(&self, diffuse_reflectance: Vec3) -> Self {
+        Self {
+            base_through_coating: base_through_coating(
+                diffuse_reflectance,
+                self.internal_reflectance,
+                self.nonlinear,
+            ),
+            ..*self
+        }
     }
 
     /// Fresnel reflectance of the coating for light arriving at `cos_theta` ≥ 0 from outside.

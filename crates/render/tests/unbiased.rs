@@ -227,10 +227,19 @@ fn blend() {
 }
 
 /// Mitsuba's `checkerboard` as diffuse reflectances (a tiled floor, a sphere, a twosided card, a
-/// cube), from the Mitsuba crosscheck scenes.
+/// cube) and as the base of a plastic wall and a rough plastic ball, from the Mitsuba crosscheck
+/// scenes.
 #[test]
 fn checkerboard() {
     check_scene("../tests/crosscheck/checkerboard.xml", EASY);
+}
+
+/// Mitsuba's `bitmap` as diffuse and plastic reflectances (8-bit sRGB and 16-bit grey PNGs and a
+/// float OpenEXR image with every filter and wrap mode, on a rectangle, a sphere, an OBJ quad, a
+/// twosided card and a plastic cube), from the Mitsuba crosscheck scenes.
+#[test]
+fn bitmap() {
+    check_scene("../tests/crosscheck/bitmap.xml", EASY);
 }
 
 /// Mitsuba's `roughplastic` (a glossy coating over a diffuse base, seen directly and through

@@ -3,12 +3,12 @@
 
 use crate::camera::Camera;
 use crate::features::SceneFeatures;
+use crate::plugins::texture::affine_to_uv;
 use crate::{
     BsdfDesc, EmitterDesc, Geometry, LoadError, MicrofacetDistribution, SceneDesc, ShapeDesc,
 };
 use geometry::{Accel, Shape, Sphere, TriangleMesh};
-use glam::Affine2;
-use integrators::{Checkerboard, World};
+use integrators::{Checkerboard, MaterialTexture, World};
 use lights::{
     ConstantEnvironment, DirectionalLight, EnvironmentMap, Light, MeshAreaLight, PointLight,
     SphereAreaLight, SpotLight,
@@ -49,22 +49,25 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
         .enumerate()
         .map(|(i, b)| build_bsdf(b).map_err(|m| error(format!("bsdf #{i}"), m)))
         .collect::<Result<Vec<_>, _>>()?;
-    // A checkerboard's material is its even BSDF; its odd one goes after the scene's own.
-    let mut checkerboards = vec![None; materials.len()];
+    // A checkerboard's material is its even BSDF; its odd one goes after the scene's own. A
+    // bitmap's material is its base.
+    let mut textures = vec![None; materials.len()];
     for (i, bsdf) in desc.bsdfs.iter().enumerate() {
-        if let BsdfDesc::Checkerboard { odd, to_uv, .. } = bsdf {
-            checkerboards[i] = Some(Checkerboard {
-                to_uv: Affine2::from_cols_array_2d(&[
-                    [to_uv[0][0], to_uv[1][0]],
-                    [to_uv[0][1], to_uv[1][1]],
-                    [to_uv[0][2], to_uv[1][2]],
-                ]),
-                odd: materials.len() as u32,
-            });
-            materials.push(build_bsdf(odd).map_err(|m| error(format!("bsdf #{i}"), m))?);
+        match bsdf {
+            BsdfDesc::Checkerboard { odd, to_uv, .. } => {
+                textures[i] = Some(MaterialTexture::Checkerboard(Checkerboard {
+                    to_uv: affine_to_uv(to_uv),
+                    odd: materials.len() as u32,
+                }));
+                materials.push(build_bsdf(odd).map_err(|m| error(format!("bsdf #{i}"), m))?);
+            }
+            BsdfDesc::DiffuseBitmap { texture, .. } => {
+                textures[i] = Some(MaterialTexture::DiffuseReflectance(texture.clone()));
+            }
+            _ => {}
         }
     }
-    checkerboards.resize(materials.len(), None);
+    textures.resize(materials.len(), None);
 
     let mut shapes = Vec::with_capacity(desc.shapes.len());
     let mut shape_material = Vec::with_capacity(desc.shapes.len());
@@ -150,7 +153,7 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
     )
     .map_err(|m| error("scene".to_string(), m))?;
     world
-        .set_checkerboards(checkerboards)
+        .set_textures(textures)
         .map_err(|m| error("scene".to_string(), m))?;
     let camera = camera(&desc);
     Ok(RenderScene {
@@ -320,6 +323,7 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
             build_bsdf(odd)?;
             build_bsdf(even)?
         }
+        BsdfDesc::DiffuseBitmap { base, .. } => build_bsdf(base)?,
         BsdfDesc::TwoSided { front, back } => Bsdf::TwoSided(
             TwoSided::with_sides(build_bsdf(front)?, build_bsdf(back)?)
                 .map_err(|e| e.to_string())?,

@@ -57,6 +57,7 @@ mod loader;
 mod mesh;
 mod params;
 mod plugins;
+mod png_image;
 mod rebase;
 mod spectrum;
 mod xml;

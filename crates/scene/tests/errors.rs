@@ -34,6 +34,99 @@ fn expect(name: &str, text: &str, line: u32, element: &str, message: &str) {
     );
 }
 
+/// A scene `body` around a diffuse BSDF whose reflectance is a bitmap with `params`, with the
+/// crosscheck scenes' 8-bit PNG copied beside it as `texture-rgb.png`.
+fn with_bitmap(params: &str) -> String {
+    let png = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/crosscheck/texture-rgb.png");
+    let beside = write_scene("texture-rgb.png", "");
+    std::fs::copy(png, beside).unwrap();
+    format!("<texture type=\"bitmap\" name=\"reflectance\">\n{params}\n</texture>")
+}
+
+#[test]
+fn bitmap_errors() {
+    let file = "<string name=\"filename\" value=\"texture-rgb.png\"/>";
+    let diffuse = |texture: String| format!("<bsdf type=\"diffuse\">\n{texture}\n</bsdf>");
+    expect(
+        "bitmap_wrap.xml",
+        &wrap(&diffuse(with_bitmap(&format!(
+            "{file}\n<string name=\"wrap_mode\" value=\"tile\"/>"
+        )))),
+        7,
+        "<string name=\"wrap_mode\"",
+        "unknown wrap_mode \"tile\"",
+    );
+    expect(
+        "bitmap_filter.xml",
+        &wrap(&diffuse(with_bitmap(&format!(
+            "{file}\n<string name=\"filter_type\" value=\"cubic\"/>"
+        )))),
+        7,
+        "<string name=\"filter_type\"",
+        "unknown filter_type \"cubic\"",
+    );
+    expect(
+        "bitmap_missing.xml",
+        &wrap(&diffuse(with_bitmap(
+            "<string name=\"filename\" value=\"no-such-image.png\"/>",
+        ))),
+        6,
+        "<string name=\"filename\"",
+        "not found",
+    );
+    write_scene("photo.jpg", "");
+    expect(
+        "bitmap_jpeg.xml",
+        &wrap(&diffuse(with_bitmap(
+            "<string name=\"filename\" value=\"photo.jpg\"/>",
+        ))),
+        6,
+        "<string name=\"filename\"",
+        "only PNG and OpenEXR",
+    );
+    write_scene("broken.png", "not a png");
+    expect(
+        "bitmap_broken.xml",
+        &wrap(&diffuse(with_bitmap(
+            "<string name=\"filename\" value=\"broken.png\"/>",
+        ))),
+        6,
+        "<string name=\"filename\"",
+        "cannot read bitmap",
+    );
+    expect(
+        "bitmap_rough_plastic.xml",
+        &wrap(&format!(
+            "<bsdf type=\"roughplastic\">\n{}\n</bsdf>",
+            with_bitmap(file).replace("\"reflectance\"", "\"diffuse_reflectance\"")
+        )),
+        4,
+        "<bsdf type=\"roughplastic\">",
+        "not supported",
+    );
+    expect(
+        "bitmap_blend.xml",
+        &wrap(&format!(
+            "<bsdf type=\"blendbsdf\">\n<float name=\"weight\" value=\"0.5\"/>\n<bsdf type=\"conductor\"/>\n{}\n</bsdf>",
+            diffuse(with_bitmap(file))
+        )),
+        4,
+        "<bsdf type=\"blendbsdf\">",
+        "not supported",
+    );
+    expect(
+        "bitmap_one_side.xml",
+        &wrap(&format!(
+            "<bsdf type=\"twosided\">\n{}\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+            diffuse(with_bitmap(file))
+        )),
+        4,
+        "<bsdf type=\"twosided\">",
+        "same BSDF on both sides",
+    );
+}
+
 #[test]
 fn display_format() {
     let err = error("display.xml", &wrap("<shape type=\"foo\"/>"));
@@ -126,7 +219,7 @@ fn unsupported_things() {
         ),
         5,
         "<texture type=\"bitmap\"",
-        "bitmap textures are not supported yet",
+        "missing required parameter \"filename\"",
     );
     expect(
         "aniso.xml",
@@ -643,9 +736,9 @@ fn references_and_parameters() {
         "given twice",
     );
     expect(
-        "texture_on_plastic.xml",
+        "texture_on_conductor.xml",
         &wrap(
-            "<bsdf type=\"plastic\">\n<texture type=\"checkerboard\" name=\"diffuse_reflectance\"/>\n</bsdf>",
+            "<bsdf type=\"conductor\">\n<texture type=\"checkerboard\" name=\"specular_reflectance\"/>\n</bsdf>",
         ),
         5,
         "<texture type=\"checkerboard\"",

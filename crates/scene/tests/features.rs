@@ -308,6 +308,73 @@ fn checkerboard_reflectance() {
     );
 }
 
+/// A `bitmap` as a diffuse or plastic reflectance becomes the BSDF with the texture's mean
+/// luminance as its albedo and the loaded texture beside it (sRGB decoded, `to_uv` applied);
+/// `twosided` goes inside; a checkerboard on a plastic is a checkerboard of two plastics.
+#[test]
+fn bitmap_reflectance() {
+    let png = data_dir().join("../../../../tests/crosscheck/texture-rgb.png");
+    std::fs::copy(png, write_scene("features-texture.png", "")).unwrap();
+    let bitmap = |extra: &str| {
+        format!(
+            "<texture type=\"bitmap\" name=\"NAME\"><string name=\"filename\" value=\"features-texture.png\"/>{extra}</texture>"
+        )
+    };
+    let desc = ok(
+        "bitmap.xml",
+        &wrap(&format!(
+            "<bsdf type=\"diffuse\">{}</bsdf>
+<bsdf type=\"twosided\"><bsdf type=\"diffuse\">{}</bsdf></bsdf>
+<bsdf type=\"plastic\">{}</bsdf>
+<bsdf type=\"plastic\"><texture type=\"checkerboard\" name=\"diffuse_reflectance\"/></bsdf>",
+            bitmap("<string name=\"filter_type\" value=\"nearest\"/>")
+                .replace("NAME", "reflectance"),
+            bitmap("<transform name=\"to_uv\"><scale x=\"2\"/></transform>")
+                .replace("NAME", "reflectance"),
+            bitmap("").replace("NAME", "diffuse_reflectance"),
+        )),
+    );
+    let BsdfDesc::DiffuseBitmap { base, texture } = &desc.bsdfs[0] else {
+        panic!("not a bitmap: {:?}", desc.bsdfs[0]);
+    };
+    let mean = texture.mean_luminance();
+    assert!(mean > 0.05 && mean < 0.95, "mean luminance {mean}");
+    assert_eq!(
+        **base,
+        BsdfDesc::Diffuse {
+            reflectance: Vec3::splat(mean)
+        }
+    );
+    // Texel (5, 2) of the 32 x 16 image is white, (20, 11) black: nearest lookups at their centres.
+    let centre = |x: f32, y: f32| Vec2::new((x + 0.5) / 32.0, (y + 0.5) / 16.0);
+    assert_eq!(texture.eval(centre(5.0, 2.0)), Vec3::ONE);
+    assert_eq!(texture.eval(centre(20.0, 11.0)), Vec3::ZERO);
+    let BsdfDesc::DiffuseBitmap {
+        base,
+        texture: scaled,
+    } = &desc.bsdfs[1]
+    else {
+        panic!("not a bitmap: {:?}", desc.bsdfs[1]);
+    };
+    assert!(matches!(**base, BsdfDesc::TwoSided { .. }), "{base:?}");
+    // With u scaled by 2, u = 0.25 reads what u = 0.5 reads unscaled.
+    let unscaled = &desc.bsdfs[2];
+    let BsdfDesc::DiffuseBitmap {
+        base,
+        texture: plain,
+    } = unscaled
+    else {
+        panic!("not a bitmap: {unscaled:?}");
+    };
+    assert!(matches!(**base, BsdfDesc::Plastic { .. }), "{base:?}");
+    let uv = Vec2::new(0.25, 0.4);
+    assert_eq!(scaled.eval(uv), plain.eval(Vec2::new(0.5, 0.4)));
+    assert!(
+        matches!(&desc.bsdfs[3], BsdfDesc::Checkerboard { even, odd, .. }
+            if matches!((&**even, &**odd), (BsdfDesc::Plastic { .. }, BsdfDesc::Plastic { .. })))
+    );
+}
+
 /// `roughplastic` reads Mitsuba's defaults (Beckmann, α 0.1, polypropylene in air, base 0.5,
 /// white coating, linear) and every parameter, and may sit inside `twosided`.
 #[test]

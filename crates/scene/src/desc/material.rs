@@ -1,6 +1,8 @@
 //! Descriptions of materials and lights.
 
 use glam::{Mat3, Vec3};
+use materials::BitmapTexture;
+use std::sync::Arc;
 
 /// Microfacet normal distribution of a rough conductor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -134,6 +136,15 @@ pub enum BsdfDesc {
         /// Mitsuba's `to_uv` as two rows: u' = row 0 · (u, v, 1), v' = row 1 · (u, v, 1)
         /// (default identity).
         to_uv: [[f32; 3]; 2],
+    },
+    /// A BSDF whose diffuse albedo is a `bitmap` texture: `base`, with its albedo the texture's
+    /// mean luminance (which Mitsuba's lobe-sampling weights use), and at each hit the texture's
+    /// value in its place. `base` is `diffuse`, `plastic`, or a `twosided` of those.
+    DiffuseBitmap {
+        /// The BSDF with the texture's mean as its albedo.
+        base: Box<BsdfDesc>,
+        /// The texture.
+        texture: Arc<BitmapTexture>,
     },
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.

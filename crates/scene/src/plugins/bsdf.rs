@@ -3,7 +3,9 @@
 //! that shapes index and `<ref id>` resolves into.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
+use super::texture::{TextureDesc, texture};
 use super::{child_loc, unexpected_child, unknown_type};
 use crate::desc::{BsdfDesc, MicrofacetDistribution};
 use crate::error::Result;
@@ -130,35 +132,33 @@ impl<'a> BsdfTable<'a> {
 
     /// Interprets a `<bsdf>` element other than `twosided`.
     fn one_sided(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
-        let texture = if node.plugin == "diffuse" {
-            self.reflectance_texture(node)?
-        } else {
-            super::no_children(node)?;
-            None
+        let texture_name = match node.plugin.as_str() {
+            "diffuse" => Some("reflectance"),
+            "plastic" | "roughplastic" => Some("diffuse_reflectance"),
+            _ => None,
+        };
+        let texture = match texture_name {
+            Some(name) => self.texture_param(node, name)?,
+            None => {
+                super::no_children(node)?;
+                None
+            }
         };
         let mut params = Params::new(node);
+        if let (Some(name), Some(_)) = (texture_name, &texture)
+            && params.has(name)
+        {
+            return Err(params.loc_of(name).error(format!(
+                "\"{name}\" is given twice (as a value and as a texture)"
+            )));
+        }
         let bsdf = match node.plugin.as_str() {
-            "diffuse" => match texture {
-                Some(checker) => {
-                    if params.has("reflectance") {
-                        return Err(params.loc_of("reflectance").error(
-                            "\"reflectance\" is given twice (as a value and as a texture)",
-                        ));
-                    }
-                    BsdfDesc::Checkerboard {
-                        even: Box::new(BsdfDesc::Diffuse {
-                            reflectance: checker.color0,
-                        }),
-                        odd: Box::new(BsdfDesc::Diffuse {
-                            reflectance: checker.color1,
-                        }),
-                        to_uv: checker.to_uv,
-                    }
-                }
-                None => BsdfDesc::Diffuse {
-                    reflectance: rgb(&mut params, "reflectance", ColorKind::Reflectance, 0.5)?,
-                },
-            },
+            "diffuse" => {
+                let reflectance = rgb(&mut params, "reflectance", ColorKind::Reflectance, 0.5)?;
+                textured(texture, reflectance, |reflectance| BsdfDesc::Diffuse {
+                    reflectance,
+                })
+            }
             "conductor" => {
                 let (eta, k) = conductor_ior(&mut params)?;
                 BsdfDesc::Conductor {
@@ -207,28 +207,37 @@ impl<'a> BsdfTable<'a> {
                 let int_ior = ior(&mut params, "int_ior", 1.49)? as f32;
                 let ext_ior = ior(&mut params, "ext_ior", 1.000277)? as f32;
                 let (diffuse_reflectance, specular_reflectance, nonlinear) = coating(&mut params)?;
-                BsdfDesc::Plastic {
-                    int_ior,
-                    ext_ior,
-                    diffuse_reflectance,
-                    specular_reflectance,
-                    nonlinear,
-                }
+                textured(texture, diffuse_reflectance, |diffuse_reflectance| {
+                    BsdfDesc::Plastic {
+                        int_ior,
+                        ext_ior,
+                        diffuse_reflectance,
+                        specular_reflectance,
+                        nonlinear,
+                    }
+                })
             }
             "roughplastic" => {
                 let (int_ior, ext_ior) = distinct_iors(&mut params, 1.49)?;
                 let distribution = distribution(&mut params)?;
                 let alpha = alpha(&mut params)?;
                 let (diffuse_reflectance, specular_reflectance, nonlinear) = coating(&mut params)?;
-                BsdfDesc::RoughPlastic {
-                    distribution,
-                    alpha,
-                    int_ior,
-                    ext_ior,
-                    diffuse_reflectance,
-                    specular_reflectance,
-                    nonlinear,
+                if let Some(TextureDesc::Bitmap(_)) = texture {
+                    return Err(node.loc.error(
+                        "a bitmap texture as a roughplastic's \"diffuse_reflectance\" is not supported (a checkerboard is)",
+                    ));
                 }
+                textured(texture, diffuse_reflectance, |diffuse_reflectance| {
+                    BsdfDesc::RoughPlastic {
+                        distribution,
+                        alpha,
+                        int_ior,
+                        ext_ior,
+                        diffuse_reflectance,
+                        specular_reflectance,
+                        nonlinear,
+                    }
+                })
             }
             _ => return Err(unknown_type(node, &SUPPORTED)),
         };
@@ -263,10 +272,31 @@ impl<'a> BsdfTable<'a> {
             .next()
             .ok_or_else(|| node.loc.error("twosided needs a nested BSDF"))?;
         let back = sides.next().unwrap_or_else(|| front.clone());
-        hoist_checkerboard(node, [front, back], |[front, back]| BsdfDesc::TwoSided {
+        let two_sided = |[front, back]: [BsdfDesc; 2]| BsdfDesc::TwoSided {
             front: Box::new(front),
             back: Box::new(back),
-        })
+        };
+        match (&front, &back) {
+            (
+                BsdfDesc::DiffuseBitmap {
+                    base: front_base,
+                    texture,
+                },
+                BsdfDesc::DiffuseBitmap {
+                    base: back_base,
+                    texture: back_texture,
+                },
+            ) if Arc::ptr_eq(texture, back_texture) => Ok(BsdfDesc::DiffuseBitmap {
+                base: Box::new(two_sided([(**front_base).clone(), (**back_base).clone()])),
+                texture: texture.clone(),
+            }),
+            (BsdfDesc::DiffuseBitmap { .. }, _) | (_, BsdfDesc::DiffuseBitmap { .. }) => {
+                Err(node.loc.error(
+                    "a twosided BSDF with a bitmap texture must show the same BSDF on both sides",
+                ))
+            }
+            _ => hoist_checkerboard(node, [front, back], two_sided),
+        }
     }
 
     /// The BSDFs nested in `node` (objects or references), each with the child it came from: one
@@ -315,6 +345,14 @@ impl<'a> BsdfTable<'a> {
             return Err(node.loc.error("blendbsdf needs two nested BSDFs"));
         };
         let weight = weight as f32;
+        if [&first, &second]
+            .iter()
+            .any(|b| matches!(b, BsdfDesc::DiffuseBitmap { .. }))
+        {
+            return Err(node
+                .loc
+                .error("a blendbsdf of a BSDF with a bitmap texture is not supported"));
+        }
         hoist_checkerboard(node, [first, second], |[first, second]| BsdfDesc::Blend {
             first: Box::new(first),
             second: Box::new(second),
@@ -338,13 +376,12 @@ impl<'a> BsdfTable<'a> {
         Ok(node)
     }
 
-    /// The checkerboard a diffuse `node` takes as its `reflectance` (a nested `<texture
-    /// name="reflectance">` or a `<ref name="reflectance" id="...">` to one), if any; any other
-    /// nested element is an error.
-    fn reflectance_texture(&self, node: &'a ObjectNode) -> Result<Option<CheckerboardDesc>> {
+    /// The texture `node` takes as its parameter `name` (a nested `<texture name="...">` or a
+    /// `<ref name="..." id="...">` to one), if any; any other nested element is an error.
+    fn texture_param(&self, node: &'a ObjectNode, name: &str) -> Result<Option<TextureDesc>> {
         let mut found = None;
         for child in &node.children {
-            let (texture, name, loc) = match child {
+            let (texture_node, given, loc) = match child {
                 Child::Object(object) if object.tag == "texture" => {
                     (object, object.name.as_deref(), &object.loc)
                 }
@@ -353,17 +390,24 @@ impl<'a> BsdfTable<'a> {
                     reference.name.as_deref(),
                     &reference.loc,
                 ),
-                _ => return Err(unexpected_child(node, child, "a reflectance <texture>")),
+                _ => {
+                    return Err(unexpected_child(
+                        node,
+                        child,
+                        &format!("a <texture name=\"{name}\">"),
+                    ));
+                }
             };
-            if name != Some("reflectance") {
-                return Err(
-                    loc.error("a texture is supported only as a diffuse BSDF's \"reflectance\"")
-                );
+            if given != Some(name) {
+                return Err(loc.error(format!(
+                    "a texture is supported only as a {} BSDF's \"{name}\"",
+                    node.plugin
+                )));
             }
             if found.is_some() {
-                return Err(loc.error("\"reflectance\" is given twice"));
+                return Err(loc.error(format!("\"{name}\" is given twice")));
             }
-            found = Some(checkerboard(texture)?);
+            found = Some(texture(texture_node)?);
         }
         Ok(found)
     }
@@ -381,45 +425,35 @@ fn bsdf_has_transmission(desc: &BsdfDesc) -> bool {
         BsdfDesc::Checkerboard { even, odd, .. } => {
             bsdf_has_transmission(even) || bsdf_has_transmission(odd)
         }
+        BsdfDesc::DiffuseBitmap { base, .. } => bsdf_has_transmission(base),
         _ => false,
     }
 }
 
-/// Mitsuba's `checkerboard` texture as Strata reads it.
-struct CheckerboardDesc {
-    color0: glam::Vec3,
-    color1: glam::Vec3,
-    to_uv: [[f32; 3]; 2],
-}
-
-/// A `<texture>` element: `checkerboard` (`color0` default 0.4, `color1` default 0.2, `to_uv`);
-/// other textures are errors naming the element.
-fn checkerboard(node: &ObjectNode) -> Result<CheckerboardDesc> {
-    match node.plugin.as_str() {
-        "checkerboard" => {}
-        "bitmap" => {
-            return Err(node
-                .loc
-                .error("bitmap textures are not supported yet (supported: checkerboard)"));
-        }
-        _ => return Err(unknown_type(node, &["checkerboard"])),
+/// The BSDF `make` gives for the reflectance a texture shows, or for `untextured` without one: a
+/// checkerboard of the BSDFs for its two colours, or a bitmap's BSDF with the texture's mean
+/// luminance.
+fn textured(
+    texture: Option<TextureDesc>,
+    untextured: glam::Vec3,
+    make: impl Fn(glam::Vec3) -> BsdfDesc,
+) -> BsdfDesc {
+    match texture {
+        None => make(untextured),
+        Some(TextureDesc::Checkerboard {
+            color0,
+            color1,
+            to_uv,
+        }) => BsdfDesc::Checkerboard {
+            even: Box::new(make(color0)),
+            odd: Box::new(make(color1)),
+            to_uv,
+        },
+        Some(TextureDesc::Bitmap(texture)) => BsdfDesc::DiffuseBitmap {
+            base: Box::new(make(glam::Vec3::splat(texture.mean_luminance()))),
+            texture,
+        },
     }
-    super::no_children(node)?;
-    let mut params = Params::new(node);
-    let color0 = rgb(&mut params, "color0", ColorKind::Reflectance, 0.4)?;
-    let color1 = rgb(&mut params, "color1", ColorKind::Reflectance, 0.2)?;
-    let m = params.transform("to_uv")?.unwrap_or(glam::DMat4::IDENTITY);
-    params.finish()?;
-    // The 2D affine part of the 4 × 4 transform: rows and columns x, y and the translation.
-    let to_uv = [
-        [m.x_axis.x, m.y_axis.x, m.w_axis.x].map(|v| v as f32),
-        [m.x_axis.y, m.y_axis.y, m.w_axis.y].map(|v| v as f32),
-    ];
-    Ok(CheckerboardDesc {
-        color0,
-        color1,
-        to_uv,
-    })
 }
 
 /// `wrap` applied to `parts`, where a checkerboard among them becomes a checkerboard of the

@@ -6,6 +6,7 @@ pub(crate) mod instance;
 pub(crate) mod integrator;
 pub(crate) mod sensor;
 pub(crate) mod shape;
+pub(crate) mod texture;
 
 use crate::error::{LoadError, Loc, Result};
 use crate::xml::tree::{Child, ObjectNode};
