@@ -163,97 +163,111 @@ mod tests {
         BitmapTexture::new(4, 2, texels, filter, wrap, Affine2::IDENTITY).unwrap()
     }
 
-    const PROBE_UVS: [(f32, f32); 7] = [
-        (0.125, 0.25),
-        (0.25, 0.25),
-        (0.0, 0.5),
-        (-0.1, 0.1),
-        (1.05, 0.9),
-        (0.3, 0.75),
-        (2.3, -0.6),
+    /// Per lookup: the surface coordinates, then Mitsuba's bilinear values with repeat, clamp
+    /// and mirror wrapping, then its nearest values with repeat and with clamp (mirror gave
+    /// the same as clamp at these points), printed to 5 decimals.
+    const MITSUBA: [((f32, f32), [[f32; 3]; 5]); 7] = [
+        (
+            (0.125, 0.25),
+            [
+                [1.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+            ],
+        ),
+        (
+            (0.25, 0.25),
+            [
+                [0.5, 0.5, 0.0],
+                [0.5, 0.5, 0.0],
+                [0.5, 0.5, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ],
+        ),
+        (
+            (0.0, 0.5),
+            [
+                [0.5, 0.25, 0.5],
+                [0.5, 0.0, 0.5],
+                [0.5, 0.0, 0.5],
+                [0.0, 0.0, 1.0],
+                [0.0, 0.0, 1.0],
+            ],
+        ),
+        (
+            (-0.1, 0.1),
+            [
+                [0.34, 0.27, 0.3],
+                [1.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+            ],
+        ),
+        (
+            (1.05, 0.9),
+            [
+                [0.42, 0.21, 0.7],
+                [1.0, 1.0, 1.0],
+                [1.0, 1.0, 1.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 1.0, 1.0],
+            ],
+        ),
+        (
+            (0.3, 0.75),
+            [
+                [0.0, 0.0, 0.3],
+                [0.0, 0.0, 0.3],
+                [0.0, 0.0, 0.3],
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, 0.0],
+            ],
+        ),
+        (
+            (2.3, -0.6),
+            [
+                [0.21, 0.49, 0.09],
+                [0.0, 0.0, 0.0],
+                [0.09, 0.21, 0.21],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 0.0],
+            ],
+        ),
     ];
 
-    fn assert_matches_mitsuba(texture: &BitmapTexture, expected: [[f32; 3]; 7]) {
-        for (&(u, v), want) in PROBE_UVS.iter().zip(expected) {
-            let got = texture.eval(Vec2::new(u, v));
-            // Mitsuba's values were printed to 5 decimals; 2e-5 covers the rounding.
-            assert!(
-                (got - Vec3::from(want)).abs().max_element() < 2e-5,
-                "{:?} {:?} at ({u}, {v}): {got} against Mitsuba's {want:?}",
-                texture.filter,
-                texture.wrap
-            );
-        }
-    }
-
     #[test]
-    fn bilinear_lookups_match_mitsuba_for_every_wrap_mode() {
-        let lookups = [
-            (
-                TextureWrap::Repeat,
-                [
-                    [1.0, 0.0, 0.0],
-                    [0.5, 0.5, 0.0],
-                    [0.5, 0.25, 0.5],
-                    [0.34, 0.27, 0.3],
-                    [0.42, 0.21, 0.7],
-                    [0.0, 0.0, 0.3],
-                    [0.21, 0.49, 0.09],
-                ],
-            ),
-            (
-                TextureWrap::Clamp,
-                [
-                    [1.0, 0.0, 0.0],
-                    [0.5, 0.5, 0.0],
-                    [0.5, 0.0, 0.5],
-                    [1.0, 0.0, 0.0],
-                    [1.0, 1.0, 1.0],
-                    [0.0, 0.0, 0.3],
-                    [0.0, 0.0, 0.0],
-                ],
-            ),
-            (
-                TextureWrap::Mirror,
-                [
-                    [1.0, 0.0, 0.0],
-                    [0.5, 0.5, 0.0],
-                    [0.5, 0.0, 0.5],
-                    [1.0, 0.0, 0.0],
-                    [1.0, 1.0, 1.0],
-                    [0.0, 0.0, 0.3],
-                    [0.09, 0.21, 0.21],
-                ],
-            ),
+    fn lookups_match_mitsuba_for_every_filter_and_wrap_mode() {
+        use TextureFilter::{Bilinear, Nearest};
+        use TextureWrap::{Clamp, Mirror, Repeat};
+        let modes = [
+            (Bilinear, Repeat),
+            (Bilinear, Clamp),
+            (Bilinear, Mirror),
+            (Nearest, Repeat),
+            (Nearest, Clamp),
         ];
-        for (wrap, expected) in lookups {
-            assert_matches_mitsuba(&probe(TextureFilter::Bilinear, wrap), expected);
+        for (column, (filter, wrap)) in modes.into_iter().enumerate() {
+            let texture = probe(filter, wrap);
+            for ((u, v), expected) in MITSUBA {
+                let want = Vec3::from(expected[column]);
+                let got = texture.eval(Vec2::new(u, v));
+                // 2e-5 covers Mitsuba's values' rounding to 5 decimals.
+                assert!(
+                    (got - want).abs().max_element() < 2e-5,
+                    "{filter:?} {wrap:?} at ({u}, {v}): {got} against Mitsuba's {want}"
+                );
+            }
         }
-    }
-
-    #[test]
-    fn nearest_lookups_match_mitsuba() {
-        let repeat = [
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
-        assert_matches_mitsuba(&probe(TextureFilter::Nearest, TextureWrap::Repeat), repeat);
-        let clamp = [
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 1.0],
-            [0.0, 0.0, 0.0],
-            [0.0, 0.0, 0.0],
-        ];
-        assert_matches_mitsuba(&probe(TextureFilter::Nearest, TextureWrap::Clamp), clamp);
-        assert_matches_mitsuba(&probe(TextureFilter::Nearest, TextureWrap::Mirror), clamp);
+        let mirrored = probe(Nearest, Mirror);
+        let clamped = probe(Nearest, Clamp);
+        for ((u, v), _) in MITSUBA {
+            let uv = Vec2::new(u, v);
+            assert_eq!(mirrored.eval(uv), clamped.eval(uv), "nearest at {uv}");
+        }
     }
 
     #[test]
