@@ -234,9 +234,9 @@ fn checkerboard() {
     check_scene("../tests/crosscheck/checkerboard.xml", EASY);
 }
 
-/// Mitsuba's `bitmap` as diffuse and plastic reflectances (8-bit sRGB and 16-bit grey PNGs and a
-/// float OpenEXR image with every filter and wrap mode, on a rectangle, a sphere, an OBJ quad, a
-/// twosided card and a plastic cube), from the Mitsuba crosscheck scenes.
+/// Mitsuba's `bitmap` as diffuse and plastic reflectances (8-bit sRGB and 16-bit grey PNGs, a
+/// JPEG and a float OpenEXR image with every filter and wrap mode, on rectangles, a sphere, an OBJ
+/// quad, a twosided card and a plastic cube), from the Mitsuba crosscheck scenes.
 #[test]
 fn bitmap() {
     check_scene("../tests/crosscheck/bitmap.xml", EASY);

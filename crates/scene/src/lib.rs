@@ -52,6 +52,7 @@ mod error;
 mod exr_image;
 mod features;
 mod ior;
+mod jpeg_image;
 pub mod limits;
 mod loader;
 mod mesh;

@@ -51,7 +51,7 @@ pub(crate) fn read_rgb(path: &Path, raw: bool) -> Result<RgbImage, String> {
 }
 
 /// The sRGB transfer function inverted: an encoded value in [0, 1] to linear.
-fn srgb_to_linear(v: f32) -> f32 {
+pub(crate) fn srgb_to_linear(v: f32) -> f32 {
     if v <= 0.04045 {
         v / 12.92
     } else {

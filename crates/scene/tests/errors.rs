@@ -75,15 +75,25 @@ fn bitmap_errors() {
         "<string name=\"filename\"",
         "not found",
     );
-    write_scene("photo.jpg", "");
+    write_scene("photo.tga", "");
     expect(
-        "bitmap_jpeg.xml",
+        "bitmap_tga.xml",
         &wrap(&diffuse(with_bitmap(
-            "<string name=\"filename\" value=\"photo.jpg\"/>",
+            "<string name=\"filename\" value=\"photo.tga\"/>",
         ))),
         6,
         "<string name=\"filename\"",
-        "only PNG and OpenEXR",
+        "only PNG, JPEG and OpenEXR",
+    );
+    write_scene("broken.jpg", "not a jpeg");
+    expect(
+        "bitmap_broken_jpeg.xml",
+        &wrap(&diffuse(with_bitmap(
+            "<string name=\"filename\" value=\"broken.jpg\"/>",
+        ))),
+        6,
+        "<string name=\"filename\"",
+        "cannot read bitmap",
     );
     write_scene("broken.png", "not a png");
     expect(

@@ -66,7 +66,7 @@ fn checkerboard(node: &ObjectNode) -> Result<TextureDesc> {
     })
 }
 
-/// `bitmap`: a PNG (decoded from sRGB unless `raw`) or OpenEXR image named by `filename`
+/// `bitmap`: a PNG or JPEG (decoded from sRGB unless `raw`) or OpenEXR image named by `filename`
 /// (relative to the scene file), with `filter_type`, `wrap_mode` and `to_uv`. Mitsuba's `format`
 /// (storage precision) and `accel` (CUDA hardware lookups) are accepted without effect.
 fn bitmap(node: &ObjectNode) -> Result<TextureDesc> {
@@ -126,8 +126,8 @@ fn bitmap(node: &ObjectNode) -> Result<TextureDesc> {
     Ok(TextureDesc::Bitmap(Arc::new(texture)))
 }
 
-/// The image at `path`, by its extension: PNG or OpenEXR; other formats and unreadable files
-/// are errors at `loc`.
+/// The image at `path`, by its extension: PNG, JPEG or OpenEXR; other formats and unreadable
+/// files are errors at `loc`.
 fn read_image(path: &Path, raw: bool, loc: &Loc) -> Result<crate::exr_image::RgbImage> {
     let extension = path
         .extension()
@@ -137,10 +137,11 @@ fn read_image(path: &Path, raw: bool, loc: &Loc) -> Result<crate::exr_image::Rgb
     }
     let image = match extension.as_deref() {
         Some("png") => crate::png_image::read_rgb(path, raw),
+        Some("jpg" | "jpeg") => crate::jpeg_image::read_rgb(path, raw),
         Some("exr") => crate::exr_image::read_rgb(path),
         _ => {
             return Err(loc.error(format!(
-                "bitmap \"{}\": only PNG and OpenEXR (.png, .exr) images are supported",
+                "bitmap \"{}\": only PNG, JPEG and OpenEXR (.png, .jpg, .jpeg, .exr) images are supported",
                 path.display()
             )));
         }
