@@ -209,7 +209,7 @@ impl World {
                         .any(|side| side.with_diffuse_reflectance(Vec3::ONE).is_none())
                     {
                         return Err(format!(
-                            "material {i}: a textured reflectance needs a diffuse or plastic BSDF"
+                            "material {i}: a textured reflectance needs a diffuse, plastic or rough plastic BSDF"
                         ));
                     }
                 }

@@ -267,13 +267,16 @@ impl Bsdf {
     }
 
     /// This BSDF with its diffuse albedo replaced by the RGB `reflectance` (a texture's value at
-    /// a hit): a [`Diffuse`] with that reflectance, a [`Plastic`] with that base
-    /// ([`Plastic::with_diffuse_reflectance`]); `None` for BSDFs that have no diffuse albedo to
-    /// replace, or whose copy would allocate.
+    /// a hit): a [`Diffuse`] with that reflectance, a [`Plastic`] or [`RoughPlastic`] with that
+    /// base ([`Plastic::with_diffuse_reflectance`]); `None` for BSDFs that have no diffuse albedo
+    /// to replace, or whose copy would allocate.
     pub fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Self> {
         match self {
             Self::Diffuse(_) => Some(Self::Diffuse(Diffuse::new(reflectance))),
             Self::Plastic(b) => Some(Self::Plastic(b.with_diffuse_reflectance(reflectance))),
+            Self::RoughPlastic(b) => {
+                Some(Self::RoughPlastic(b.with_diffuse_reflectance(reflectance)))
+            }
             _ => None,
         }
     }

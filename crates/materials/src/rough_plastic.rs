@@ -9,6 +9,7 @@ use crate::plastic::{base_through_coating, specular_sampling_weight};
 use glam::{Vec2, Vec3};
 use sampling::warp::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use std::f32::consts::FRAC_1_PI;
+use std::sync::Arc;
 
 /// Entries of the coating's transmittance table over cos θ ∈ [0, 1] (Mitsuba's 64).
 const TRANSMITTANCE_ENTRIES: usize = 64;
@@ -43,8 +44,10 @@ pub struct RoughPlastic {
     internal_reflectance: f32,
     specular_reflectance: Vec3,
     specular_sampling_weight: f32,
-    /// T at cos θ = i / (entries − 1).
-    external_transmittance: Box<[f32]>,
+    nonlinear: bool,
+    /// T at cos θ = i / (entries − 1), shared by the copies [`Self::with_diffuse_reflectance`]
+    /// makes.
+    external_transmittance: Arc<[f32]>,
 }
 
 impl RoughPlastic {
@@ -87,6 +90,7 @@ impl RoughPlastic {
             inv_eta_sqr: 1.0 / (eta * eta),
             base_through_coating,
             internal_reflectance,
+            nonlinear,
             specular_reflectance,
             specular_sampling_weight: specular_sampling_weight(
                 diffuse_reflectance,
@@ -94,6 +98,20 @@ impl RoughPlastic {
             ),
             external_transmittance,
         })
+    }
+
+    /// The same coating over a base of RGB albedo `diffuse_reflectance`, keeping this one's
+    /// lobe-sampling weight and sharing its tables (no allocation): how a textured base is
+    /// shaded, Mitsuba computing the weight once from the texture's mean.
+    pub fn with_diffuse_reflectance(&self, diffuse_reflectance: Vec3) -> Self {
+        Self {
+            base_through_coating: base_through_coating(
+                diffuse_reflectance,
+                self.internal_reflectance,
+                self.nonlinear,
+            ),
+            ..self.clone()
+        }
     }
 
     /// R_int: the fraction of diffuse (cosine-distributed) light from inside the coating that

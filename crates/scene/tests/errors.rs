@@ -106,16 +106,6 @@ fn bitmap_errors() {
         "cannot read bitmap",
     );
     expect(
-        "bitmap_rough_plastic.xml",
-        &wrap(&format!(
-            "<bsdf type=\"roughplastic\">\n{}\n</bsdf>",
-            with_bitmap(file).replace("\"reflectance\"", "\"diffuse_reflectance\"")
-        )),
-        4,
-        "<bsdf type=\"roughplastic\">",
-        "not supported",
-    );
-    expect(
         "bitmap_blend.xml",
         &wrap(&format!(
             "<bsdf type=\"blendbsdf\">\n<float name=\"weight\" value=\"0.5\"/>\n<bsdf type=\"conductor\"/>\n{}\n</bsdf>",

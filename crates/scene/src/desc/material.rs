@@ -139,7 +139,7 @@ pub enum BsdfDesc {
     },
     /// A BSDF whose diffuse albedo is a `bitmap` texture: `base`, with its albedo the texture's
     /// mean luminance (which Mitsuba's lobe-sampling weights use), and at each hit the texture's
-    /// value in its place. `base` is `diffuse`, `plastic`, or a `twosided` of those.
+    /// value in its place. `base` is `diffuse`, `plastic`, `roughplastic`, or a `twosided` of those.
     DiffuseBitmap {
         /// The BSDF with the texture's mean as its albedo.
         base: Box<BsdfDesc>,

@@ -222,11 +222,6 @@ impl<'a> BsdfTable<'a> {
                 let distribution = distribution(&mut params)?;
                 let alpha = alpha(&mut params)?;
                 let (diffuse_reflectance, specular_reflectance, nonlinear) = coating(&mut params)?;
-                if let Some(TextureDesc::Bitmap(_)) = texture {
-                    return Err(node.loc.error(
-                        "a bitmap texture as a roughplastic's \"diffuse_reflectance\" is not supported (a checkerboard is)",
-                    ));
-                }
                 textured(texture, diffuse_reflectance, |diffuse_reflectance| {
                     BsdfDesc::RoughPlastic {
                         distribution,
