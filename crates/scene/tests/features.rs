@@ -879,11 +879,13 @@ fn orthographic_sensor() {
     assert!(err.message.contains("fov"), "{err}");
 }
 
-/// `volpath` and `volpathmis` read as the path tracer with the same parameters (Strata reads no
-/// media, and without media Mitsuba's volumetric path tracers are its path tracer).
+/// `volpath`, `volpathmis`, `prb` and `prbvolpath` read as the path tracer with the same
+/// parameters (Strata reads no media, and without media Mitsuba's volumetric path tracers are its
+/// path tracer; the path replay integrators render the path tracer's image), the last two with
+/// Mitsuba's default depth 6 when the file gives none.
 #[test]
 fn volumetric_path_tracers_are_the_path_tracer() {
-    for plugin in ["volpath", "volpathmis"] {
+    for plugin in ["volpath", "volpathmis", "prb", "prbvolpath"] {
         let text = wrap("").replace(
             "<integrator type=\"path\"/>",
             &format!(
@@ -901,6 +903,13 @@ fn volumetric_path_tracers_are_the_path_tracer() {
             (7, 3, true),
             "{plugin}"
         );
+        let defaults = wrap("").replace(
+            "<integrator type=\"path\"/>",
+            &format!("<integrator type=\"{plugin}\"/>"),
+        );
+        let desc = ok(&format!("{plugin}-defaults.xml"), &defaults);
+        let depth = if plugin.starts_with("prb") { 6 } else { -1 };
+        assert_eq!(desc.integrator.max_depth, depth, "{plugin}");
     }
 }
 

@@ -1,5 +1,6 @@
 //! `<integrator type="path">` (and `volpath`, `volpathmis`, which are the path tracer in scenes
-//! without participating media, the only scenes Strata reads) and `<integrator type="direct">`.
+//! without participating media, the only scenes Strata reads; and the differentiable variants'
+//! `prb` and `prbvolpath`, whose images are the path tracer's) and `<integrator type="direct">`.
 
 use super::{no_children, unknown_type};
 use crate::desc::{IntegratorDesc, IntegratorKind};
@@ -11,14 +12,25 @@ use crate::xml::tree::ObjectNode;
 /// Mitsuba's default Russian roulette start depth.
 const DEFAULT_RR_DEPTH: i64 = 5;
 
+/// The default `max_depth` of Mitsuba's path replay integrators (`prb`, `prbvolpath`); the
+/// others default to -1, unbounded.
+const PRB_DEFAULT_MAX_DEPTH: i64 = 6;
+
 /// Interprets an `<integrator>` element.
 pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
     no_children(node)?;
     let mut params = Params::new(node);
     let desc = match node.plugin.as_str() {
-        "path" | "volpath" | "volpathmis" => IntegratorDesc {
+        "path" | "volpath" | "volpathmis" | "prb" | "prbvolpath" => IntegratorDesc {
             kind: IntegratorKind::Path,
-            max_depth: params.integer_in("max_depth", -1, -1, i64::from(i32::MAX))? as i32,
+            max_depth: {
+                let default = if node.plugin.starts_with("prb") {
+                    PRB_DEFAULT_MAX_DEPTH
+                } else {
+                    -1
+                };
+                params.integer_in("max_depth", default, -1, i64::from(i32::MAX))? as i32
+            },
             rr_depth: params.integer_in("rr_depth", DEFAULT_RR_DEPTH, 1, i64::from(u32::MAX))?
                 as u32,
             hide_emitters: params.boolean_or("hide_emitters", false)?,
@@ -32,7 +44,14 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
         _ => {
             return Err(unknown_type(
                 node,
-                &["path", "volpath", "volpathmis", "direct"],
+                &[
+                    "path",
+                    "volpath",
+                    "volpathmis",
+                    "prb",
+                    "prbvolpath",
+                    "direct",
+                ],
             ));
         }
     };
