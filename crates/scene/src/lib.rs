@@ -51,6 +51,7 @@ mod desc;
 mod error;
 mod exr_image;
 mod features;
+mod image_file;
 mod ior;
 mod jpeg_image;
 pub mod limits;
@@ -60,6 +61,7 @@ mod params;
 mod plugins;
 mod png_image;
 mod rebase;
+mod rgbe_image;
 mod spectrum;
 mod xml;
 

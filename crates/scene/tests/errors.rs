@@ -83,7 +83,7 @@ fn bitmap_errors() {
         ))),
         6,
         "<string name=\"filename\"",
-        "only PNG, JPEG and OpenEXR",
+        "only PNG, JPEG, OpenEXR and RGBE",
     );
     write_scene("broken.jpg", "not a jpeg");
     expect(
@@ -171,14 +171,15 @@ fn unsupported_things() {
         "<string name=\"filename\"",
         "not found",
     );
+    write_scene("sky.tga", "");
     expect(
-        "envmap_png.xml",
+        "envmap_tga.xml",
         &wrap(
-            "<emitter type=\"envmap\">\n<string name=\"filename\" value=\"sky.png\"/>\n</emitter>",
+            "<emitter type=\"envmap\">\n<string name=\"filename\" value=\"sky.tga\"/>\n</emitter>",
         ),
         5,
         "<string name=\"filename\"",
-        "only OpenEXR",
+        "only PNG, JPEG, OpenEXR and RGBE",
     );
     expect(
         "envmap_no_file.xml",

@@ -90,8 +90,8 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
     Ok(emitter)
 }
 
-/// `envmap`: an OpenEXR latitude-longitude image named by `filename` (relative to the scene
-/// file), with `scale` and `to_world`; Mitsuba's `mis_compensation` changes only how the map
+/// `envmap`: a latitude-longitude image named by `filename` (relative to the scene file; OpenEXR,
+/// RGBE, or PNG and JPEG decoded from sRGB), with `scale` and `to_world`; Mitsuba's `mis_compensation` changes only how the map
 /// is sampled and is accepted without effect.
 fn envmap(params: &mut Params) -> Result<EmitterDesc> {
     if params.has("bitmap") {
@@ -106,24 +106,7 @@ fn envmap(params: &mut Params) -> Result<EmitterDesc> {
     })?;
     let dir = loc.file.parent().unwrap_or(std::path::Path::new(""));
     let path = dir.join(filename);
-    let is_exr = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
-    if !is_exr {
-        return Err(loc.error(format!(
-            "environment map \"{}\": only OpenEXR (.exr) images are supported",
-            path.display()
-        )));
-    }
-    if !path.is_file() {
-        return Err(loc.error(format!("environment map \"{}\" not found", path.display())));
-    }
-    let image = crate::exr_image::read_rgb(&path).map_err(|e| {
-        loc.error(format!(
-            "cannot read environment map \"{}\": {e}",
-            path.display()
-        ))
-    })?;
+    let image = crate::image_file::read_linear_rgb(&path, false, "environment map", loc)?;
     let scale = params.float_or("scale", 1.0)?;
     if !(scale.is_finite() && scale >= 0.0) {
         return Err(params.loc_of("scale").error(format!(

@@ -5,7 +5,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use super::unknown_type;
-use crate::error::{Loc, Result};
+use crate::error::Result;
 use crate::params::{ColorKind, Params};
 use crate::xml::tree::ObjectNode;
 use glam::{Affine2, Vec2, Vec3};
@@ -66,7 +66,8 @@ fn checkerboard(node: &ObjectNode) -> Result<TextureDesc> {
     })
 }
 
-/// `bitmap`: a PNG or JPEG (decoded from sRGB unless `raw`) or OpenEXR image named by `filename`
+/// `bitmap`: a PNG or JPEG (decoded from sRGB unless `raw`), OpenEXR or RGBE image named by
+/// `filename`
 /// (relative to the scene file), with `filter_type`, `wrap_mode` and `to_uv`. Mitsuba's `format`
 /// (storage precision) and `accel` (CUDA hardware lookups) are accepted without effect.
 fn bitmap(node: &ObjectNode) -> Result<TextureDesc> {
@@ -113,7 +114,7 @@ fn bitmap(node: &ObjectNode) -> Result<TextureDesc> {
     params.finish()?;
     let dir = loc.file.parent().unwrap_or(Path::new(""));
     let path = dir.join(filename);
-    let image = read_image(&path, raw, loc)?;
+    let image = crate::image_file::read_linear_rgb(&path, raw, "bitmap", loc)?;
     let texture = BitmapTexture::new(
         image.width as usize,
         image.height as usize,
@@ -124,29 +125,6 @@ fn bitmap(node: &ObjectNode) -> Result<TextureDesc> {
     )
     .map_err(|e| loc.error(format!("bitmap \"{}\": {e}", path.display())))?;
     Ok(TextureDesc::Bitmap(Arc::new(texture)))
-}
-
-/// The image at `path`, by its extension: PNG, JPEG or OpenEXR; other formats and unreadable
-/// files are errors at `loc`.
-fn read_image(path: &Path, raw: bool, loc: &Loc) -> Result<crate::exr_image::RgbImage> {
-    let extension = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    if !path.is_file() {
-        return Err(loc.error(format!("bitmap \"{}\" not found", path.display())));
-    }
-    let image = match extension.as_deref() {
-        Some("png") => crate::png_image::read_rgb(path, raw),
-        Some("jpg" | "jpeg") => crate::jpeg_image::read_rgb(path, raw),
-        Some("exr") => crate::exr_image::read_rgb(path),
-        _ => {
-            return Err(loc.error(format!(
-                "bitmap \"{}\": only PNG, JPEG and OpenEXR (.png, .jpg, .jpeg, .exr) images are supported",
-                path.display()
-            )));
-        }
-    };
-    image.map_err(|e| loc.error(format!("cannot read bitmap \"{}\": {e}", path.display())))
 }
 
 /// Mitsuba's `to_uv` (default identity): the 2D affine part of the 4 × 4 transform, as rows.
