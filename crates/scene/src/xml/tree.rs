@@ -249,6 +249,8 @@ impl Builder {
         })?;
         let file = Arc::new(path.to_path_buf());
         let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+        let text = super::comments::tolerate_dashes(text);
+        let text = text.as_ref();
         let doc = roxmltree::Document::parse(text).map_err(|e| syntax_error(&file, text, &e))?;
         let root = doc.root_element();
         let ctx = FileCtx {
