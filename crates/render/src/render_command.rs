@@ -31,8 +31,7 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
                  supported {MAX_FILM_PIXELS}"
             )));
         }
-        desc.film.width = width;
-        desc.film.height = height;
+        desc.film = desc.film.resized(width, height);
     }
     // Only a saved or resumed state needs the scene's fingerprint (it reads every vertex).
     let scene_hash =

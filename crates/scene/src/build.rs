@@ -166,7 +166,11 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
 
 /// The camera for the description's sensor and film.
 fn camera(desc: &SceneDesc) -> Camera {
-    Camera::new(&desc.sensor, desc.film.width, desc.film.height)
+    let [width, height] = desc.film.full_size;
+    Camera::new(&desc.sensor, width, height).cropped(
+        glam::UVec2::from_array(desc.film.crop_offset),
+        glam::UVec2::new(desc.film.width, desc.film.height),
+    )
 }
 
 fn runtime_shape(shape: &ShapeDesc) -> Shape {

@@ -1,7 +1,7 @@
 //! Mitsuba's `perspective`, `thinlens` and `orthographic` sensors: rays from film positions.
 
 use geometry::Ray;
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, UVec2, Vec2, Vec3};
 use integrators::{CameraConnection, CameraRay};
 
 use crate::desc::SensorDesc;
@@ -34,6 +34,10 @@ pub struct Camera {
     lens: Option<ThinLens>,
     /// Parallel rays from the near plane over x ∈ [−1, 1], y ∈ [−1/aspect, 1/aspect].
     orthographic: bool,
+    /// The rendered image's top-left pixel in the whole film (a crop window's offset), pixels.
+    crop_offset: Vec2,
+    /// The rendered image's size, pixels (the whole film's without a crop window).
+    crop_size: Vec2,
 }
 
 impl Camera {
@@ -54,6 +58,19 @@ impl Camera {
                 focus_distance: l.focus_distance,
             }),
             orthographic: sensor.orthographic,
+            crop_offset: Vec2::ZERO,
+            crop_size: Vec2::new(width as f32, height as f32),
+        }
+    }
+
+    /// This camera rendering only the crop window of `size` pixels at `offset` in its film
+    /// (Mitsuba's `crop_offset_x/y`, `crop_width/height`): film positions given to and returned
+    /// by [`Self::generate_ray`] and [`Self::connect`] are then the window's.
+    pub fn cropped(self, offset: UVec2, size: UVec2) -> Self {
+        Self {
+            crop_offset: offset.as_vec2(),
+            crop_size: size.as_vec2(),
+            ..self
         }
     }
 
@@ -77,6 +94,7 @@ impl Camera {
     /// on the far one.
     #[inline]
     pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> CameraRay {
+        let film = film + self.crop_offset;
         if self.orthographic {
             return self.orthographic_ray(film);
         }
@@ -168,16 +186,20 @@ impl Camera {
             -on_plane.x / self.tan_half_fov.x,
             -on_plane.y / self.tan_half_fov.y,
         );
-        let film = ((ndc + Vec2::ONE) * 0.5 - self.principal_point_offset) * self.resolution;
+        let film = ((ndc + Vec2::ONE) * 0.5 - self.principal_point_offset) * self.resolution
+            - self.crop_offset;
         let margin = Vec2::splat(margin);
-        if !(film.cmpge(-margin).all() && film.cmplt(self.resolution + margin).all()) {
+        if !(film.cmpge(-margin).all() && film.cmplt(self.crop_size + margin).all()) {
             return None;
         }
         let eye = self.to_world.transform_point3(aperture);
         let distance_squared = (p - eye).length_squared();
         let cos_theta = to_p.z / to_p.length();
+        // The whole image plane at unit distance, and the share of it the rendered image takes:
+        // one light path is traced per pixel sample of the rendered image, not of the film.
         let plane_area = 4.0 * self.tan_half_fov.x * self.tan_half_fov.y;
-        let importance = 1.0 / (plane_area * cos_theta.powi(3) * distance_squared);
+        let rendered_share = self.crop_size.element_product() / self.resolution.element_product();
+        let importance = 1.0 / (plane_area * rendered_share * cos_theta.powi(3) * distance_squared);
         importance.is_finite().then(|| CameraConnection {
             film,
             target: self.to_world.transform_point3(near),
@@ -211,6 +233,37 @@ mod tests {
             orthographic: false,
         };
         Camera::new(&sensor, 64, 48)
+    }
+
+    #[test]
+    fn a_crop_window_renders_its_part_of_the_film() {
+        let full = camera([0.0, 0.0]);
+        let cropped = full.cropped(UVec2::new(20, 10), UVec2::new(16, 12));
+        let at = Vec2::new(3.25, 7.5);
+        let whole = full.generate_ray(at + Vec2::new(20.0, 10.0), Vec2::ZERO);
+        let window = cropped.generate_ray(at, Vec2::ZERO);
+        assert!((whole.ray.dir - window.ray.dir).length() < 1e-6);
+        assert!((whole.ray.origin - window.ray.origin).length() < 1e-6);
+        // A point the window sees connects to the window's pixel, with the importance of one
+        // of its light paths: the film has 64 x 48 / (16 x 12) = 16 times as many pixels.
+        let p = whole.ray.at(5.0);
+        let (from_full, from_window) = (
+            full.connect(p, 0.0, Vec2::ZERO).unwrap(),
+            cropped.connect(p, 0.0, Vec2::ZERO).unwrap(),
+        );
+        assert!(
+            (from_window.film - at).length() < 1e-3,
+            "{}",
+            from_window.film
+        );
+        assert!((from_window.importance / from_full.importance - 16.0).abs() < 1e-3);
+        // What the film shows outside the window is not connected.
+        let outside = full
+            .generate_ray(Vec2::new(5.0, 40.0), Vec2::ZERO)
+            .ray
+            .at(5.0);
+        assert!(full.connect(outside, 0.0, Vec2::ZERO).is_some());
+        assert!(cropped.connect(outside, 0.0, Vec2::ZERO).is_none());
     }
 
     #[test]

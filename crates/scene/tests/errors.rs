@@ -480,6 +480,24 @@ fn film_and_settings() {
         "more than the supported",
     );
     expect(
+        "crop_too_wide.xml",
+        &film(
+            "<integer name=\"width\" value=\"64\"/>\n<integer name=\"crop_offset_x\" value=\"40\"/>\n<integer name=\"crop_width\" value=\"32\"/>",
+        ),
+        7,
+        "<integer name=\"crop_width\"",
+        "does not fit the film's 64",
+    );
+    expect(
+        "crop_offset_outside.xml",
+        &film(
+            "<integer name=\"height\" value=\"16\"/>\n<integer name=\"crop_offset_y\" value=\"16\"/>",
+        ),
+        6,
+        "<integer name=\"crop_offset_y\"",
+        "must lie in [0, 15]",
+    );
+    expect(
         "float_width.xml",
         &film("<float name=\"width\" value=\"64\"/>"),
         5,

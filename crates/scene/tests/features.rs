@@ -38,6 +38,10 @@ fn mitsuba_defaults() {
     assert_eq!(desc.sensor.to_world, glam::Mat4::IDENTITY);
     assert!(desc.sensor.lens.is_none());
     assert_eq!((desc.film.width, desc.film.height), (768, 576));
+    assert_eq!(
+        (desc.film.full_size, desc.film.crop_offset),
+        ([768, 576], [0, 0])
+    );
     assert_eq!(desc.film.filter, FilterDesc::Gaussian { stddev: 0.5 });
     assert_eq!(
         desc.sampler,
@@ -1014,6 +1018,33 @@ fn mirrored_mesh_keeps_normals_consistent() {
     // The quad (z = 0) still faces +z after mirroring x.
     assert!(close(triangle_normal(m, 0), Vec3::Z, 1e-6));
     assert_eq!(m.positions[1], Vec3::new(-1.0, 0.0, 0.0));
+}
+
+/// A crop window renders its own size of the film; its size defaults to the rest of the film.
+#[test]
+fn film_crop_window() {
+    let film = |crop: &str| {
+        let text = wrap("").replace(
+            "<sensor type=\"perspective\"/>",
+            &format!("<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"64\"/><integer name=\"height\" value=\"48\"/>{crop}</film></sensor>"),
+        );
+        ok("crop.xml", &text).film
+    };
+    let cropped = film(
+        "<integer name=\"crop_offset_x\" value=\"8\"/><integer name=\"crop_offset_y\" value=\"4\"/><integer name=\"crop_width\" value=\"16\"/><integer name=\"crop_height\" value=\"12\"/>",
+    );
+    assert_eq!((cropped.width, cropped.height), (16, 12));
+    assert_eq!((cropped.full_size, cropped.crop_offset), ([64, 48], [8, 4]));
+    let rest = film("<integer name=\"crop_offset_x\" value=\"60\"/>");
+    assert_eq!(
+        (rest.width, rest.height, rest.crop_offset),
+        (4, 48, [60, 0])
+    );
+    let resized = cropped.resized(32, 24);
+    assert_eq!(
+        (resized.width, resized.full_size, resized.crop_offset),
+        (32, [32, 24], [0, 0])
+    );
 }
 
 #[test]

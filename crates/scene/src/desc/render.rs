@@ -149,12 +149,32 @@ pub enum FilterDesc {
 /// The film (`<film type="hdrfilm">`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FilmDesc {
-    /// Image width in pixels (default 768).
+    /// Width in pixels of the image rendered: the crop window's (`crop_width`), by default the
+    /// whole film's (`width`, default 768).
     pub width: u32,
-    /// Image height in pixels (default 576).
+    /// Height in pixels of the image rendered: the crop window's (`crop_height`), by default the
+    /// whole film's (`height`, default 576).
     pub height: u32,
+    /// Width and height in pixels of the whole film, which the camera's view spans.
+    pub full_size: [u32; 2],
+    /// The crop window's top-left pixel in the whole film (`crop_offset_x`, `crop_offset_y`,
+    /// default 0).
+    pub crop_offset: [u32; 2],
     /// Reconstruction filter.
     pub filter: FilterDesc,
+}
+
+impl FilmDesc {
+    /// The whole film resized to `width` × `height` pixels, without a crop window.
+    pub fn resized(self, width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            full_size: [width, height],
+            crop_offset: [0, 0],
+            ..self
+        }
+    }
 }
 
 /// The sample generator the scene names (`<sampler type="...">`).

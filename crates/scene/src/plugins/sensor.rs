@@ -219,6 +219,8 @@ fn default_film() -> FilmDesc {
     FilmDesc {
         width: 768,
         height: 576,
+        full_size: [768, 576],
+        crop_offset: [0, 0],
         filter: FilterDesc::Gaussian { stddev: 0.5 },
     }
 }
@@ -266,10 +268,45 @@ fn film_desc(node: &ObjectNode) -> Result<FilmDesc> {
             .error("sample_border=\"true\" is not supported"));
     }
     params.ignore("banner");
+    let crop_offset = [
+        params.integer_in("crop_offset_x", 0, 0, i64::from(width) - 1)? as u32,
+        params.integer_in("crop_offset_y", 0, 0, i64::from(height) - 1)? as u32,
+    ];
+    let crop_size = [
+        params.integer_in("crop_width", i64::from(width - crop_offset[0]), 1, MAX_SIDE)? as u32,
+        params.integer_in(
+            "crop_height",
+            i64::from(height - crop_offset[1]),
+            1,
+            MAX_SIDE,
+        )? as u32,
+    ];
+    for (axis, (offset, size, full)) in [
+        ("x", (crop_offset[0], crop_size[0], width)),
+        ("y", (crop_offset[1], crop_size[1], height)),
+    ] {
+        if u64::from(offset) + u64::from(size) > u64::from(full) {
+            let name = if axis == "x" {
+                "crop_width"
+            } else {
+                "crop_height"
+            };
+            let loc = if params.has(name) {
+                params.loc_of(name)
+            } else {
+                &node.loc
+            };
+            return Err(loc.error(format!(
+                "the crop window ({offset} + {size} pixels along {axis}) does not fit the film's {full}"
+            )));
+        }
+    }
     params.finish()?;
     Ok(FilmDesc {
-        width,
-        height,
+        width: crop_size[0],
+        height: crop_size[1],
+        full_size: [width, height],
+        crop_offset,
         filter: filter.unwrap_or(FilterDesc::Gaussian { stddev: 0.5 }),
     })
 }
