@@ -38,8 +38,7 @@ pub fn load_file(path: &Path, overrides: &[(&str, &str)], width: u32, height: u3
         .map(|(k, v)| (k.to_string(), v.to_string()))
         .collect();
     let mut desc = scene::parse_file(path, &overrides).unwrap_or_else(|e| panic!("{e}"));
-    desc.film.width = width;
-    desc.film.height = height;
+    desc.film = desc.film.resized(width, height);
     scene::build(desc).unwrap_or_else(|e| panic!("{e}"))
 }
 
