@@ -66,8 +66,12 @@ fn interpret_scene(path: &Path, root: &ObjectNode) -> Result<SceneDesc> {
             "integrator" => {
                 return Err(object.loc.error("a scene can have only one <integrator>"));
             }
+            // The first sensor is rendered, as by Mitsuba's `mi.render` and its command line
+            // without `--sensor`; later ones are read for their errors only.
             "sensor" if camera.is_none() => camera = Some(sensor(object)?),
-            "sensor" => return Err(object.loc.error("a scene can have only one <sensor>")),
+            "sensor" => {
+                sensor(object)?;
+            }
             // A shape group is placed by its instances only.
             "shape" if object.plugin == "shapegroup" => {}
             "shape" if object.plugin == "instance" => {

@@ -586,11 +586,11 @@ fn xml_structure() {
         "no <sensor>",
     );
     expect(
-        "two_sensors.xml",
-        &wrap("<sensor type=\"perspective\"/>"),
-        4,
-        "<sensor type=\"perspective\">",
-        "only one <sensor>",
+        "bad_second_sensor.xml",
+        &wrap("<sensor type=\"perspective\">\n<float name=\"fov\" value=\"0\"/>\n</sensor>"),
+        5,
+        "<float name=\"fov\"",
+        "field of view must lie strictly between 0 and 180",
     );
     expect(
         "two_bsdfs.xml",

@@ -1020,6 +1020,20 @@ fn mirrored_mesh_keeps_normals_consistent() {
     assert_eq!(m.positions[1], Vec3::new(-1.0, 0.0, 0.0));
 }
 
+/// Of several sensors the first is rendered, as Mitsuba's `mi.render` and command line do by
+/// default.
+#[test]
+fn the_first_of_several_sensors_is_rendered() {
+    let text = wrap("<sensor type=\"perspective\"><float name=\"fov\" value=\"20\"/><film type=\"hdrfilm\"><integer name=\"width\" value=\"32\"/></film></sensor>")
+        .replace(
+            "<sensor type=\"perspective\"/>",
+            "<sensor type=\"perspective\"><float name=\"fov\" value=\"50\"/></sensor>",
+        );
+    let desc = ok("two_sensors.xml", &text);
+    assert_eq!(desc.sensor.fov_deg, 50.0);
+    assert_eq!(desc.film.width, 768);
+}
+
 /// A crop window renders its own size of the film; its size defaults to the rest of the film.
 #[test]
 fn film_crop_window() {
