@@ -234,6 +234,14 @@ fn checkerboard() {
     check_scene("../tests/crosscheck/checkerboard.xml", EASY);
 }
 
+/// Mitsuba's `null` BSDF (an invisible card before the camera, an invisible sphere around a
+/// ball, an emitting sphere that lets what is behind it show), from the Mitsuba crosscheck
+/// scenes.
+#[test]
+fn null_bsdf() {
+    check_scene("../tests/crosscheck/null.xml", EASY);
+}
+
 /// Mitsuba's `bitmap` as diffuse and plastic reflectances (8-bit sRGB and 16-bit grey PNGs, a
 /// JPEG and a float OpenEXR image with every filter and wrap mode, on rectangles, a sphere, an OBJ
 /// quad, a twosided card and a plastic cube), from the Mitsuba crosscheck scenes.

@@ -379,6 +379,21 @@ fn bitmap_reflectance() {
     );
 }
 
+/// `null` is an invisible surface: a thin slab of equal indices that reflects nothing.
+#[test]
+fn null_bsdf_is_a_clear_thin_slab() {
+    let desc = ok("null.xml", &wrap("<bsdf type=\"null\"/>"));
+    assert_eq!(
+        desc.bsdfs[0],
+        BsdfDesc::ThinDielectric {
+            int_ior: 1.0,
+            ext_ior: 1.0,
+            specular_reflectance: Vec3::ZERO,
+            specular_transmittance: Vec3::ONE,
+        }
+    );
+}
+
 /// `roughplastic` reads Mitsuba's defaults (Beckmann, α 0.1, polypropylene in air, base 0.5,
 /// white coating, linear) and every parameter, and may sit inside `twosided`.
 #[test]

@@ -1,5 +1,5 @@
 //! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
-//! plastic, roughplastic, twosided and blendbsdf, plus the table of BSDFs
+//! plastic, roughplastic, twosided, blendbsdf and null, plus the table of BSDFs
 //! that shapes index and `<ref id>` resolves into.
 
 use std::collections::HashMap;
@@ -14,7 +14,7 @@ use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
 /// The BSDF plugins this loader understands.
-const SUPPORTED: [&str; 10] = [
+const SUPPORTED: [&str; 11] = [
     "diffuse",
     "conductor",
     "roughconductor",
@@ -25,6 +25,7 @@ const SUPPORTED: [&str; 10] = [
     "roughplastic",
     "twosided",
     "blendbsdf",
+    "null",
 ];
 
 /// The BSDFs of a scene, filled as shapes and references ask for them.
@@ -197,6 +198,14 @@ impl<'a> BsdfTable<'a> {
                     specular_transmittance: specular_transmittance(&mut params)?,
                 }
             }
+            // Mitsuba's invisible surface: light passes straight through it, a delta transmission
+            // of weight 1, which a thin slab of equal indices and no reflection is.
+            "null" => BsdfDesc::ThinDielectric {
+                int_ior: 1.0,
+                ext_ior: 1.0,
+                specular_reflectance: glam::Vec3::ZERO,
+                specular_transmittance: glam::Vec3::ONE,
+            },
             "thindielectric" => BsdfDesc::ThinDielectric {
                 int_ior: ior(&mut params, "int_ior", 1.5046)? as f32,
                 ext_ior: ior(&mut params, "ext_ior", 1.000277)? as f32,
