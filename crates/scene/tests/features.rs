@@ -1104,6 +1104,16 @@ fn fixture_directory_is_resolved_relative_to_the_scene() {
     assert!(desc.source.ends_with("cornell.xml"));
 }
 
+/// A document type declaration and comments holding `--` are read as Mitsuba reads them.
+#[test]
+fn doctype_and_dashes_in_comments_are_accepted() {
+    let desc = ok(
+        "doctype.xml",
+        "<?xml version=\"1.0\"?>\n<!DOCTYPE scene>\n<!-- render with --spp 64 --->\n<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\"/><shape type=\"cube\"/></scene>",
+    );
+    assert_eq!(desc.shapes.len(), 1);
+}
+
 #[test]
 fn byte_order_mark_is_accepted() {
     let desc = ok(

@@ -251,7 +251,14 @@ impl Builder {
         let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
         let text = super::comments::tolerate_dashes(text);
         let text = text.as_ref();
-        let doc = roxmltree::Document::parse(text).map_err(|e| syntax_error(&file, text, &e))?;
+        // A document type declaration is allowed, as Mitsuba's parser allows it (roxmltree
+        // still refuses entity loops and exponential expansion).
+        let options = roxmltree::ParsingOptions {
+            allow_dtd: true,
+            ..roxmltree::ParsingOptions::default()
+        };
+        let doc = roxmltree::Document::parse_with_options(text, options)
+            .map_err(|e| syntax_error(&file, text, &e))?;
         let root = doc.root_element();
         let ctx = FileCtx {
             doc: &doc,
