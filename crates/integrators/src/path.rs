@@ -109,12 +109,15 @@ impl PathIntegrator {
     }
 
     /// Radiance (W m⁻² sr⁻¹, RGB) arriving at the camera along `camera_ray`: one path's estimate.
+    /// `slot` holds the BSDF of a textured hit while the path is there; the caller keeps one for
+    /// all its paths, so that a path costs nothing for it when the scene has no textures.
     pub fn radiance(
         &self,
         world: &World,
         camera_ray: CameraRay,
         sampler: &mut impl Sampler,
         counters: &mut impl RayTally,
+        slot: &mut BsdfSlot,
     ) -> Vec3 {
         let settings = &self.settings;
         let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
@@ -136,15 +139,14 @@ impl PathIntegrator {
         // Whether every bounce so far was by a delta lobe: what the path finds next, neither light
         // sampling nor the light tracer can reach.
         let mut seen_through_delta = true;
-        let mut slot = BsdfSlot::default();
         for depth in 1..=max_depth {
             let hidden = depth == 1 && settings.hide_emitters;
             let found = if hidden {
-                world.intersect_past_emitters(&camera_ray, counters, &mut slot)
+                world.intersect_past_emitters(&camera_ray, counters, slot)
             } else if depth == 1 {
-                world.intersect_within(&ray, camera_ray.t_max, counters, &mut slot)
+                world.intersect_within(&ray, camera_ray.t_max, counters, slot)
             } else {
-                world.intersect(&ray, counters, &mut slot)
+                world.intersect(&ray, counters, slot)
             };
             let Some(surface) = found else {
                 if !hidden {

@@ -8,7 +8,9 @@ use crate::driver::{
 use crate::filter::{Filter, FilterError};
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
-use integrators::{LightTracer, PathIntegrator, RayCounters, RayLog, RayTally, reference};
+use integrators::{
+    BsdfSlot, LightTracer, PathIntegrator, RayCounters, RayLog, RayTally, reference,
+};
 use sampling::Sampler;
 use sampling::sampler::{
     BlueNoiseSampler, IndependentSampler, PrefixSampler, SamplerKind, SobolSampler,
@@ -29,6 +31,8 @@ enum Integrator {
 struct Worker<'a, S, T> {
     sampler: S,
     tally: T,
+    /// Room for a textured hit's BSDF, for all the worker's paths.
+    slot: BsdfSlot,
     finish: &'a (dyn Fn(&mut T) + Sync),
 }
 
@@ -311,6 +315,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         || Worker {
             sampler: new_sampler(),
             tally: T::default(),
+            slot: BsdfSlot::default(),
             finish,
         },
         |worker: &mut Worker<'_, S, T>, pixel: UVec2, sample_index: u32| -> Vec3 {
@@ -329,7 +334,9 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
                 Integrator::Reference(settings) => {
                     reference::radiance(world, ray, sampler, settings, &mut worker.tally)
                 }
-                Integrator::Path(path) => path.radiance(world, ray, sampler, &mut worker.tally),
+                Integrator::Path(path) => {
+                    path.radiance(world, ray, sampler, &mut worker.tally, &mut worker.slot)
+                }
             };
             if let (Some(costs), Some(before)) = (costs, rays_before) {
                 costs.add(pixel, worker.tally.counts().since(before));

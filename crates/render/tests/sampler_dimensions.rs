@@ -104,6 +104,7 @@ fn each_path_draws(
         draws: Vec::new(),
     };
     let mut counters = RayCounters::default();
+    let mut slot = integrators::BsdfSlot::default();
     for y in 0..16 {
         for x in 0..16 {
             for index in 0..samples {
@@ -112,7 +113,7 @@ fn each_path_draws(
                 let ray = scene
                     .camera
                     .generate_ray(pixel.as_vec2() + Vec2::splat(0.5), Vec2::ZERO);
-                integrator.radiance(&scene.world, ray, &mut sampler, &mut counters);
+                integrator.radiance(&scene.world, ray, &mut sampler, &mut counters, &mut slot);
                 visit(pixel, index, &sampler.draws);
             }
         }
