@@ -28,9 +28,8 @@ pub struct Plastic {
     inv_eta_sqr: f32,
     /// ρ′: the base's reflectance with the coating's internal reflections summed, RGB.
     base_through_coating: Vec3,
-    /// F_dr,int, the coating's diffuse Fresnel reflectance from inside.
-    internal_reflectance: f32,
-    nonlinear: bool,
+    /// With F_dr,int, the coating's diffuse Fresnel reflectance from inside.
+    coating: Coating,
     specular_reflectance: Vec3,
     specular_sampling_weight: f32,
 }
@@ -50,13 +49,15 @@ impl Plastic {
     ) -> Result<Self, MaterialError> {
         let eta = relative_ior(int_ior, ext_ior)?;
         let internal = diffuse_fresnel_reflectance(1.0 / eta);
-        let base_through_coating = base_through_coating(diffuse_reflectance, internal, nonlinear);
+        let coating = Coating {
+            internal_reflectance: internal,
+            nonlinear,
+        };
         Ok(Self {
             eta,
             inv_eta_sqr: 1.0 / (eta * eta),
-            base_through_coating,
-            internal_reflectance: internal,
-            nonlinear,
+            base_through_coating: coating.base_through(diffuse_reflectance),
+            coating,
             specular_reflectance,
             specular_sampling_weight: specular_sampling_weight(
                 diffuse_reflectance,
@@ -70,11 +71,7 @@ impl Plastic {
     /// from the texture's mean.
     pub fn with_diffuse_reflectance(&self, diffuse_reflectance: Vec3) -> Self {
         Self {
-            base_through_coating: base_through_coating(
-                diffuse_reflectance,
-                self.internal_reflectance,
-                self.nonlinear,
-            ),
+            base_through_coating: self.coating.base_through(diffuse_reflectance),
             ..*self
         }
     }
@@ -199,17 +196,24 @@ pub(crate) fn specular_sampling_weight(
     }
 }
 
-/// A coated base's reflectance with the coating's internal reflections summed: ρ / (1 − R_int),
-/// or with Mitsuba's `nonlinear` ρ / (1 − ρ R_int), for the coating's reflectance `internal`
-/// (R_int) of diffuse light from inside.
-pub(crate) fn base_through_coating(
-    diffuse_reflectance: Vec3,
-    internal: f32,
-    nonlinear: bool,
-) -> Vec3 {
-    if nonlinear {
-        diffuse_reflectance / (Vec3::ONE - diffuse_reflectance * internal)
-    } else {
-        diffuse_reflectance / (1.0 - internal)
+/// How a coating shows the base under it: its reflectance R_int for diffuse light from inside and
+/// Mitsuba's `nonlinear` switch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Coating {
+    /// R_int, the fraction of diffuse light from inside that the coating reflects back.
+    pub(crate) internal_reflectance: f32,
+    /// Whether internal scattering darkens and saturates the base's colour.
+    pub(crate) nonlinear: bool,
+}
+
+impl Coating {
+    /// A base of RGB albedo `diffuse_reflectance` with the coating's internal reflections
+    /// summed: ρ / (1 − R_int), or with `nonlinear` ρ / (1 − ρ R_int).
+    pub(crate) fn base_through(&self, diffuse_reflectance: Vec3) -> Vec3 {
+        if self.nonlinear {
+            diffuse_reflectance / (Vec3::ONE - diffuse_reflectance * self.internal_reflectance)
+        } else {
+            diffuse_reflectance / (1.0 - self.internal_reflectance)
+        }
     }
 }

@@ -5,7 +5,7 @@ use crate::bsdf::BsdfSample;
 use crate::error::{MaterialError, relative_ior};
 use crate::fresnel::{fresnel_dielectric, reflect_about};
 use crate::microfacet::Microfacet;
-use crate::plastic::{base_through_coating, specular_sampling_weight};
+use crate::plastic::{Coating, specular_sampling_weight};
 use glam::{Vec2, Vec3};
 use sampling::warp::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use std::f32::consts::FRAC_1_PI;
@@ -40,14 +40,14 @@ pub struct RoughPlastic {
     inv_eta_sqr: f32,
     /// ρ′: the base's reflectance with the coating's internal reflections summed, RGB.
     base_through_coating: Vec3,
-    /// R_int, the coating's reflectance for diffuse light from inside.
-    internal_reflectance: f32,
+    /// With R_int, the coating's reflectance for diffuse light from inside, as Mitsuba estimates it.
+    coating: Coating,
     specular_reflectance: Vec3,
     specular_sampling_weight: f32,
-    nonlinear: bool,
     /// T at cos θ = i / (entries − 1), shared by the copies [`Self::with_diffuse_reflectance`]
     /// makes.
-    external_transmittance: Arc<[f32]>,
+    /// (A fixed-size array, so that the `Arc` is one pointer and the BSDF stays 64 bytes.)
+    external_transmittance: Arc<[f32; TRANSMITTANCE_ENTRIES]>,
 }
 
 impl RoughPlastic {
@@ -68,9 +68,9 @@ impl RoughPlastic {
             let mu = (i as f32 / (TRANSMITTANCE_ENTRIES - 1) as f32).max(1e-6);
             Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu)
         };
-        let external_transmittance = (0..TRANSMITTANCE_ENTRIES)
-            .map(|i| distribution.interface_albedo(direction(i), eta, false, QUADRATURE_OUTSIDE))
-            .collect();
+        let external_transmittance = Arc::new(std::array::from_fn(|i| {
+            distribution.interface_albedo(direction(i), eta, false, QUADRATURE_OUTSIDE)
+        }));
         // 2 ∫ R μ dμ as Mitsuba estimates it, twice the mean of R μ over the table's cosines:
         // 1.5–2% below the trapezoidal rule's value (which a smooth coating's exact diffuse
         // Fresnel reflectance confirms), taken for the images to agree with Mitsuba's.
@@ -82,15 +82,16 @@ impl RoughPlastic {
                 })
                 .sum::<f32>()
             / TRANSMITTANCE_ENTRIES as f32;
-        let base_through_coating =
-            base_through_coating(diffuse_reflectance, internal_reflectance, nonlinear);
+        let coating = Coating {
+            internal_reflectance,
+            nonlinear,
+        };
         Ok(Self {
             distribution,
             eta,
             inv_eta_sqr: 1.0 / (eta * eta),
-            base_through_coating,
-            internal_reflectance,
-            nonlinear,
+            base_through_coating: coating.base_through(diffuse_reflectance),
+            coating,
             specular_reflectance,
             specular_sampling_weight: specular_sampling_weight(
                 diffuse_reflectance,
@@ -105,11 +106,7 @@ impl RoughPlastic {
     /// shaded, Mitsuba computing the weight once from the texture's mean.
     pub fn with_diffuse_reflectance(&self, diffuse_reflectance: Vec3) -> Self {
         Self {
-            base_through_coating: base_through_coating(
-                diffuse_reflectance,
-                self.internal_reflectance,
-                self.nonlinear,
-            ),
+            base_through_coating: self.coating.base_through(diffuse_reflectance),
             ..self.clone()
         }
     }
@@ -117,7 +114,7 @@ impl RoughPlastic {
     /// R_int: the fraction of diffuse (cosine-distributed) light from inside the coating that
     /// its rough interface reflects back, as Mitsuba estimates it.
     pub fn internal_reflectance(&self) -> f32 {
-        self.internal_reflectance
+        self.coating.internal_reflectance
     }
 
     /// T(θ) for `cos_theta` ∈ [0, 1]: the fraction of light arriving from outside at θ that the
