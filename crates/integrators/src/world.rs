@@ -42,6 +42,9 @@ pub enum MaterialTexture {
     /// The diffuse albedo ([`Bsdf::with_diffuse_reflectance`]) of the BSDF the hit sees is the
     /// bitmap's value there.
     DiffuseReflectance(Arc<BitmapTexture>),
+    /// The weight ([`Bsdf::with_blend_weight`]) of the blend the hit sees is the bitmap's
+    /// luminance there.
+    BlendWeight(Arc<BitmapTexture>),
 }
 
 /// Room for the BSDF of a textured hit, which exists only for that hit: the integrators keep
@@ -199,18 +202,28 @@ impl World {
                         ));
                     }
                 }
-                Some(MaterialTexture::DiffuseReflectance(_)) => {
+                Some(
+                    texture @ (MaterialTexture::DiffuseReflectance(_)
+                    | MaterialTexture::BlendWeight(_)),
+                ) => {
                     let sides = match &self.materials[i] {
                         Bsdf::TwoSided(two_sided) => [two_sided.front(), two_sided.back()],
                         bsdf => [bsdf, bsdf],
                     };
-                    if sides
-                        .iter()
-                        .any(|side| side.with_diffuse_reflectance(Vec3::ONE).is_none())
-                    {
-                        return Err(format!(
-                            "material {i}: a textured reflectance needs a diffuse, plastic or rough plastic BSDF"
-                        ));
+                    let (fits, needed) = match texture {
+                        MaterialTexture::BlendWeight(_) => (
+                            sides.iter().all(|s| s.with_blend_weight(0.5).is_some()),
+                            "a blend",
+                        ),
+                        _ => (
+                            sides
+                                .iter()
+                                .all(|s| s.with_diffuse_reflectance(Vec3::ONE).is_some()),
+                            "a diffuse, plastic or rough plastic BSDF",
+                        ),
+                    };
+                    if !fits {
+                        return Err(format!("material {i}: its texture needs {needed}"));
                     }
                 }
                 None => {}
@@ -263,6 +276,14 @@ impl World {
                 let (side, frame) = self.facing(material, frame, dir);
                 let reflectance = bitmap.eval(self.accel.uv(hit));
                 match side.with_diffuse_reflectance(reflectance) {
+                    Some(textured) => (slot.0.insert(textured), frame),
+                    None => (side, frame),
+                }
+            }
+            Some(MaterialTexture::BlendWeight(bitmap)) => {
+                let (side, frame) = self.facing(material, frame, dir);
+                let weight = bitmap.eval_luminance(self.accel.uv(hit));
+                match side.with_blend_weight(weight) {
                     Some(textured) => (slot.0.insert(textured), frame),
                     None => (side, frame),
                 }

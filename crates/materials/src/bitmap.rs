@@ -78,16 +78,17 @@ impl BitmapTexture {
         })
     }
 
-    /// The mean luminance of the texels (Rec. 709 weights): what Mitsuba's `mean()` gives a
-    /// texture's lobe-sampling weights.
+    /// The mean luminance of the texels: what Mitsuba's `mean()` gives a texture's lobe-sampling
+    /// weights.
     pub fn mean_luminance(&self) -> f32 {
-        let luminance = Vec3::new(0.2126, 0.7152, 0.0722);
-        let sum: f64 = self
-            .texels
-            .iter()
-            .map(|t| f64::from(t.dot(luminance)))
-            .sum();
+        let sum: f64 = self.texels.iter().map(|&t| f64::from(luminance(t))).sum();
         (sum / self.texels.len() as f64) as f32
+    }
+
+    /// The luminance of [`Self::eval`] at `uv`: what Mitsuba's `eval_1` gives a scalar parameter
+    /// (a blend's weight) from a colour image; a grey image's value.
+    pub fn eval_luminance(&self, uv: Vec2) -> f32 {
+        luminance(self.eval(uv))
     }
 
     /// The texture's linear RGB value at surface coordinates `uv` (before `to_uv`).
@@ -119,6 +120,11 @@ impl BitmapTexture {
         let y = wrap(y, self.height, self.wrap);
         self.texels[y * self.width + x]
     }
+}
+
+/// The luminance of linear RGB with Mitsuba's weights (Rec. 709 primaries), which sum to 1.
+fn luminance(rgb: Vec3) -> f32 {
+    rgb.dot(Vec3::new(0.212_671, 0.715_160, 0.072_169))
 }
 
 /// The index in 0..`size` that `wrap_mode` gives the integer-valued coordinate `i` (which may
@@ -246,9 +252,9 @@ mod tests {
             let got = texture.eval(Vec2::new(uv.0, uv.1));
             assert!((got - colour).abs().max_element() < 1e-6, "{got} at {uv:?}");
         }
-        assert!(
-            (texture.mean_luminance() - colour.dot(Vec3::new(0.2126, 0.7152, 0.0722))).abs() < 1e-6
-        );
+        assert!((texture.mean_luminance() - luminance(colour)).abs() < 1e-6);
+        assert!((texture.eval_luminance(Vec2::new(0.3, 0.6)) - luminance(colour)).abs() < 1e-6);
+        assert!((luminance(Vec3::ONE) - 1.0).abs() < 1e-6);
     }
 
     #[test]

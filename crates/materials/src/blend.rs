@@ -5,6 +5,7 @@ use crate::error::MaterialError;
 use crate::rough_conductor::LOBE_WEIGHT_FLOOR;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
+use std::sync::Arc;
 
 /// f = (1 − w) f₀ + w f₁ for a weight w in [0, 1]: the first BSDF at w = 0, the second at 1.
 ///
@@ -14,8 +15,9 @@ use std::f32::consts::FRAC_1_PI;
 /// weight, which is the chosen BSDF's.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Blend {
-    first: Box<Bsdf>,
-    second: Box<Bsdf>,
+    /// Shared by the copies [`Self::with_weight`] makes.
+    first: Arc<Bsdf>,
+    second: Arc<Bsdf>,
     weight: f32,
     is_delta: bool,
 }
@@ -28,10 +30,19 @@ impl Blend {
         }
         Ok(Self {
             is_delta: first.is_delta() && second.is_delta(),
-            first: Box::new(first),
-            second: Box::new(second),
+            first: Arc::new(first),
+            second: Arc::new(second),
             weight,
         })
+    }
+
+    /// The same two BSDFs blended by `weight` clamped to [0, 1], as Mitsuba clamps a texture's
+    /// weight at each hit; shares the BSDFs (no allocation).
+    pub fn with_weight(&self, weight: f32) -> Self {
+        Self {
+            weight: weight.clamp(0.0, 1.0),
+            ..self.clone()
+        }
     }
 
     /// The BSDF at weight 0.

@@ -281,6 +281,15 @@ impl Bsdf {
         }
     }
 
+    /// A [`Blend`] with its weight replaced by `weight` (a texture's value at a hit, clamped to
+    /// [0, 1] by [`Blend::with_weight`]); `None` for other BSDFs.
+    pub fn with_blend_weight(&self, weight: f32) -> Option<Self> {
+        match self {
+            Self::Blend(b) => Some(Self::Blend(b.with_weight(weight))),
+            _ => None,
+        }
+    }
+
     /// A rough RGB albedo for heuristics (Russian roulette, choosing techniques), not for
     /// shading: the diffuse reflectance; for conductors the reflectance at normal incidence
     /// (`specular_reflectance` × Fresnel at cos θ = 1, ignoring microfacet shadowing); for a

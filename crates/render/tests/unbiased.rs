@@ -234,6 +234,13 @@ fn checkerboard() {
     check_scene("../tests/crosscheck/checkerboard.xml", EASY);
 }
 
+/// Mitsuba's `blendbsdf` with textured weights (an 8-bit PNG's luminance, a 16-bit grey PNG, a
+/// checkerboard), from the Mitsuba crosscheck scenes.
+#[test]
+fn blend_weight_textures() {
+    check_scene("../tests/crosscheck/blend-texture.xml", EASY);
+}
+
 /// Mitsuba's `null` BSDF (an invisible card before the camera, an invisible sphere around a
 /// ball, an emitting sphere that lets what is behind it show), from the Mitsuba crosscheck
 /// scenes.

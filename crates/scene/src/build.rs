@@ -64,6 +64,9 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
             BsdfDesc::DiffuseBitmap { texture, .. } => {
                 textures[i] = Some(MaterialTexture::DiffuseReflectance(texture.clone()));
             }
+            BsdfDesc::BlendWeightBitmap { texture, .. } => {
+                textures[i] = Some(MaterialTexture::BlendWeight(texture.clone()));
+            }
             _ => {}
         }
     }
@@ -327,7 +330,9 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
             build_bsdf(odd)?;
             build_bsdf(even)?
         }
-        BsdfDesc::DiffuseBitmap { base, .. } => build_bsdf(base)?,
+        BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::BlendWeightBitmap { base, .. } => {
+            build_bsdf(base)?
+        }
         BsdfDesc::TwoSided { front, back } => Bsdf::TwoSided(
             TwoSided::with_sides(build_bsdf(front)?, build_bsdf(back)?)
                 .map_err(|e| e.to_string())?,

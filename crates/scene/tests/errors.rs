@@ -116,6 +116,26 @@ fn bitmap_errors() {
         "not supported",
     );
     expect(
+        "blend_weight_twice.xml",
+        &wrap(&format!(
+            "<bsdf type=\"blendbsdf\">\n{}\n<float name=\"weight\" value=\"0.5\"/>\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"conductor\"/>\n</bsdf>",
+            with_bitmap(file).replace("\"reflectance\"", "\"weight\"")
+        )),
+        8,
+        "<float name=\"weight\"",
+        "given twice",
+    );
+    expect(
+        "blend_weight_twosided.xml",
+        &wrap(&format!(
+            "<bsdf type=\"twosided\">\n<bsdf type=\"blendbsdf\">\n{}\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"conductor\"/>\n</bsdf>\n</bsdf>",
+            with_bitmap(file).replace("\"reflectance\"", "\"weight\"")
+        )),
+        5,
+        "<bsdf type=\"blendbsdf\">",
+        "twosided around a blendbsdf with a bitmap weight",
+    );
+    expect(
         "bitmap_one_side.xml",
         &wrap(&format!(
             "<bsdf type=\"twosided\">\n{}\n<bsdf type=\"diffuse\"/>\n</bsdf>",

@@ -379,6 +379,38 @@ fn bitmap_reflectance() {
     );
 }
 
+/// A blend's weight may be a texture: a checkerboard becomes a checkerboard of two blends, the
+/// even squares weighted by `color1`'s mean over RGB and the odd ones by `color0`'s (Mitsuba's
+/// `eval_1`); a bitmap gives the blend with the texture's mean luminance and the texture.
+#[test]
+fn blend_weight_textures() {
+    let png = data_dir().join("../../../../tests/crosscheck/texture-rgb.png");
+    std::fs::copy(png, write_scene("blend-weight.png", "")).unwrap();
+    let desc = ok(
+        "blend_weight.xml",
+        &wrap(
+            "<bsdf type=\"blendbsdf\"><texture type=\"checkerboard\" name=\"weight\"><rgb name=\"color0\" value=\"0.9, 0.6, 0.3\"/><float name=\"color1\" value=\"0.2\"/></texture><bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/></bsdf>
+<texture type=\"bitmap\" id=\"w\"><string name=\"filename\" value=\"blend-weight.png\"/></texture>
+<bsdf type=\"blendbsdf\"><bsdf type=\"diffuse\"/><ref name=\"weight\" id=\"w\"/><bsdf type=\"conductor\"/></bsdf>",
+        ),
+    );
+    let weight_of = |b: &BsdfDesc| match b {
+        BsdfDesc::Blend { weight, .. } => *weight,
+        other => panic!("not a blend: {other:?}"),
+    };
+    let BsdfDesc::Checkerboard { even, odd, .. } = &desc.bsdfs[0] else {
+        panic!("not a checkerboard: {:?}", desc.bsdfs[0]);
+    };
+    assert!((weight_of(even) - 0.2).abs() < 1e-6);
+    assert!((weight_of(odd) - 0.6).abs() < 1e-6);
+    let BsdfDesc::BlendWeightBitmap { base, texture } = &desc.bsdfs[1] else {
+        panic!("not a bitmap weight: {:?}", desc.bsdfs[1]);
+    };
+    assert_eq!(weight_of(base), texture.mean_luminance());
+    assert!(matches!(&**base, BsdfDesc::Blend { first, second, .. }
+        if matches!(**first, BsdfDesc::Diffuse { .. }) && matches!(**second, BsdfDesc::Conductor { .. })));
+}
+
 /// `null` is an invisible surface: a thin slab of equal indices that reflects nothing.
 #[test]
 fn null_bsdf_is_a_clear_thin_slab() {

@@ -146,6 +146,15 @@ pub enum BsdfDesc {
         /// The texture.
         texture: Arc<BitmapTexture>,
     },
+    /// A `blendbsdf` whose weight is a `bitmap` texture: `base`, a blend with the texture's mean
+    /// luminance as its weight, and at each hit the texture's luminance (clamped to [0, 1]) in its
+    /// place.
+    BlendWeightBitmap {
+        /// The blend with the texture's mean luminance as its weight.
+        base: Box<BsdfDesc>,
+        /// The texture.
+        texture: Arc<BitmapTexture>,
+    },
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.
     TwoSided {

@@ -139,7 +139,7 @@ impl<'a> BsdfTable<'a> {
             _ => None,
         };
         let texture = match texture_name {
-            Some(name) => self.texture_param(node, name)?,
+            Some(name) => self.texture_param(node, name, &[])?,
             None => {
                 super::no_children(node)?;
                 None
@@ -253,8 +253,13 @@ impl<'a> BsdfTable<'a> {
     fn twosided(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
         Params::new(node).finish()?;
         let mut sides = Vec::new();
-        for (child, bsdf) in self.nested(node)? {
+        for (child, bsdf) in self.nested(node, None)? {
             match bsdf {
+                BsdfDesc::BlendWeightBitmap { .. } => {
+                    return Err(child_loc(child).error(
+                        "twosided around a blendbsdf with a bitmap weight is not supported",
+                    ));
+                }
                 BsdfDesc::TwoSided { .. }
                 | BsdfDesc::Dielectric { .. }
                 | BsdfDesc::RoughDielectric { .. }
@@ -304,10 +309,23 @@ impl<'a> BsdfTable<'a> {
     }
 
     /// The BSDFs nested in `node` (objects or references), each with the child it came from: one
-    /// or two, else an error at the element.
-    fn nested(&mut self, node: &'a ObjectNode) -> Result<Vec<(&'a Child, BsdfDesc)>> {
+    /// or two, else an error at the element. A texture or reference named `texture_name` is
+    /// passed over (a blend's weight).
+    fn nested(
+        &mut self,
+        node: &'a ObjectNode,
+        texture_name: Option<&str>,
+    ) -> Result<Vec<(&'a Child, BsdfDesc)>> {
         let mut found = Vec::new();
         for child in &node.children {
+            let named = match child {
+                Child::Object(object) if object.tag == "texture" => object.name.as_deref(),
+                Child::Ref(reference) => reference.name.as_deref(),
+                Child::Object(_) => None,
+            };
+            if texture_name.is_some() && named == texture_name {
+                continue;
+            }
             if found.len() == 2 {
                 return Err(unexpected_child(node, child, "one or two BSDFs"));
             }
@@ -330,37 +348,84 @@ impl<'a> BsdfTable<'a> {
         Ok(found)
     }
 
-    /// `blendbsdf`: exactly two nested BSDFs and a constant `weight` in [0, 1] (Mitsuba's takes
-    /// a texture too, which Strata does not read).
+    /// `blendbsdf`: exactly two nested BSDFs and a `weight`: a constant in [0, 1], or a
+    /// `checkerboard` or `bitmap` texture read as Mitsuba's `eval_1` reads it (a checkerboard's
+    /// colours by their mean over RGB, `color0` on the squares where exactly one of u and v has a
+    /// fractional part above ½, the other way round from its colour lookups; a bitmap by its
+    /// luminance), clamped to [0, 1] as Mitsuba clamps it.
     fn blend(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
+        let weight_texture = self.texture_param(node, "weight", &["bsdf"])?;
         let mut params = Params::new(node);
-        let weight = params.float("weight")?.ok_or_else(|| {
-            node.loc
-                .error("missing required parameter \"weight\" (a float in [0, 1])")
-        })?;
-        if !(0.0..=1.0).contains(&weight) {
-            return Err(params
-                .loc_of("weight")
-                .error(format!("\"weight\" must be in [0, 1], got {weight}")));
-        }
+        let weight = params.float("weight")?;
+        let weight = match (&weight_texture, weight) {
+            (Some(_), Some(_)) => {
+                return Err(params
+                    .loc_of("weight")
+                    .error("\"weight\" is given twice (as a value and as a texture)"));
+            }
+            (None, None) => {
+                return Err(node.loc.error(
+                    "missing required parameter \"weight\" (a float in [0, 1] or a texture)",
+                ));
+            }
+            (None, Some(weight)) if !(0.0..=1.0).contains(&weight) => {
+                return Err(params
+                    .loc_of("weight")
+                    .error(format!("\"weight\" must be in [0, 1], got {weight}")));
+            }
+            (_, weight) => weight.unwrap_or(0.5) as f32,
+        };
         params.finish()?;
-        let mut nested = self.nested(node)?.into_iter().map(|(_, bsdf)| bsdf);
+        let mut nested = self
+            .nested(node, Some("weight"))?
+            .into_iter()
+            .map(|(_, bsdf)| bsdf);
         let (Some(first), Some(second)) = (nested.next(), nested.next()) else {
             return Err(node.loc.error("blendbsdf needs two nested BSDFs"));
         };
-        let weight = weight as f32;
-        if [&first, &second]
-            .iter()
-            .any(|b| matches!(b, BsdfDesc::DiffuseBitmap { .. }))
-        {
+        if [&first, &second].iter().any(|b| {
+            matches!(
+                b,
+                BsdfDesc::DiffuseBitmap { .. } | BsdfDesc::BlendWeightBitmap { .. }
+            )
+        }) {
             return Err(node
                 .loc
                 .error("a blendbsdf of a BSDF with a bitmap texture is not supported"));
         }
-        hoist_checkerboard(node, [first, second], |[first, second]| BsdfDesc::Blend {
+        let blend = |[first, second]: [BsdfDesc; 2], weight: f32| BsdfDesc::Blend {
             first: Box::new(first),
             second: Box::new(second),
-            weight,
+            weight: weight.clamp(0.0, 1.0),
+        };
+        let Some(texture) = weight_texture else {
+            return hoist_checkerboard(node, [first, second], |parts| blend(parts, weight));
+        };
+        if [&first, &second]
+            .iter()
+            .any(|b| matches!(b, BsdfDesc::Checkerboard { .. }))
+        {
+            return Err(node.loc.error(
+                "a blendbsdf with a textured weight of a BSDF with a checkerboard is not supported",
+            ));
+        }
+        Ok(match texture {
+            TextureDesc::Checkerboard {
+                color0,
+                color1,
+                to_uv,
+            } => {
+                let mean = |c: glam::Vec3| c.element_sum() / 3.0;
+                BsdfDesc::Checkerboard {
+                    even: Box::new(blend([first.clone(), second.clone()], mean(color1))),
+                    odd: Box::new(blend([first, second], mean(color0))),
+                    to_uv,
+                }
+            }
+            TextureDesc::Bitmap(texture) => BsdfDesc::BlendWeightBitmap {
+                base: Box::new(blend([first, second], texture.mean_luminance())),
+                texture,
+            },
         })
     }
 
@@ -381,11 +446,24 @@ impl<'a> BsdfTable<'a> {
     }
 
     /// The texture `node` takes as its parameter `name` (a nested `<texture name="...">` or a
-    /// `<ref name="..." id="...">` to one), if any; any other nested element is an error.
-    fn texture_param(&self, node: &'a ObjectNode, name: &str) -> Result<Option<TextureDesc>> {
+    /// `<ref name="..." id="...">` to one), if any. Nested objects with a tag in `passed_over`
+    /// (a blend's BSDFs), and then references by another name, are left for the caller; any
+    /// other nested element is an error.
+    fn texture_param(
+        &self,
+        node: &'a ObjectNode,
+        name: &str,
+        passed_over: &[&str],
+    ) -> Result<Option<TextureDesc>> {
         let mut found = None;
         for child in &node.children {
             let (texture_node, given, loc) = match child {
+                Child::Object(object) if passed_over.contains(&object.tag.as_str()) => continue,
+                Child::Ref(reference)
+                    if !passed_over.is_empty() && reference.name.as_deref() != Some(name) =>
+                {
+                    continue;
+                }
                 Child::Object(object) if object.tag == "texture" => {
                     (object, object.name.as_deref(), &object.loc)
                 }
@@ -429,7 +507,9 @@ fn bsdf_has_transmission(desc: &BsdfDesc) -> bool {
         BsdfDesc::Checkerboard { even, odd, .. } => {
             bsdf_has_transmission(even) || bsdf_has_transmission(odd)
         }
-        BsdfDesc::DiffuseBitmap { base, .. } => bsdf_has_transmission(base),
+        BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::BlendWeightBitmap { base, .. } => {
+            bsdf_has_transmission(base)
+        }
         _ => false,
     }
 }
