@@ -272,18 +272,19 @@ impl World {
                 };
                 self.facing(chosen, frame, dir)
             }
-            Some(MaterialTexture::DiffuseReflectance(bitmap)) => {
+            Some(bitmap_texture) => {
                 let (side, frame) = self.facing(material, frame, dir);
-                let reflectance = bitmap.eval(self.accel.uv(hit));
-                match side.with_diffuse_reflectance(reflectance) {
-                    Some(textured) => (slot.0.insert(textured), frame),
-                    None => (side, frame),
-                }
-            }
-            Some(MaterialTexture::BlendWeight(bitmap)) => {
-                let (side, frame) = self.facing(material, frame, dir);
-                let weight = bitmap.eval_luminance(self.accel.uv(hit));
-                match side.with_blend_weight(weight) {
+                let uv = self.accel.uv(hit);
+                let textured = match bitmap_texture {
+                    MaterialTexture::DiffuseReflectance(bitmap) => {
+                        side.with_diffuse_reflectance(bitmap.eval(uv))
+                    }
+                    MaterialTexture::BlendWeight(bitmap) => {
+                        side.with_blend_weight(bitmap.eval_luminance(uv))
+                    }
+                    MaterialTexture::Checkerboard(_) => None,
+                };
+                match textured {
                     Some(textured) => (slot.0.insert(textured), frame),
                     None => (side, frame),
                 }
