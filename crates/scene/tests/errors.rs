@@ -180,7 +180,7 @@ fn unsupported_things() {
         &wrap("<bsdf type=\"principled\"/>"),
         4,
         "<bsdf type=\"principled\">",
-        "supported: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic, twosided, blendbsdf",
+        "supported: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic, twosided, blendbsdf, mask, null",
     );
     expect(
         "envmap_missing.xml",
@@ -723,6 +723,22 @@ fn references_and_parameters() {
         5,
         "<float name=\"weight\"",
         "must be in [0, 1]",
+    );
+    expect(
+        "mask_two_bsdfs.xml",
+        &wrap("<bsdf type=\"mask\">\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/>\n</bsdf>"),
+        4,
+        "<bsdf type=\"mask\">",
+        "exactly one nested BSDF",
+    );
+    expect(
+        "mask_opacity.xml",
+        &wrap(
+            "<bsdf type=\"mask\">\n<float name=\"opacity\" value=\"-0.1\"/>\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+        ),
+        5,
+        "<float name=\"opacity\"",
+        "\"opacity\" must be in [0, 1]",
     );
     expect(
         "blend_no_weight.xml",

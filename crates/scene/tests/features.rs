@@ -411,6 +411,48 @@ fn blend_weight_textures() {
         if matches!(**first, BsdfDesc::Diffuse { .. }) && matches!(**second, BsdfDesc::Conductor { .. })));
 }
 
+/// `mask` is a blend of `null` (weight 0) and its nested BSDF (weight 1) by `opacity`: ½ by
+/// default, a constant, or a texture (a bitmap gives the blend with its mean luminance).
+#[test]
+fn mask_is_a_blend_with_null() {
+    let png = data_dir().join("../../../../tests/crosscheck/texture-rgb.png");
+    std::fs::copy(png, write_scene("mask-opacity.png", "")).unwrap();
+    let desc = ok(
+        "mask.xml",
+        &wrap(
+            "<bsdf type=\"mask\"><bsdf type=\"conductor\"/></bsdf>
+<bsdf type=\"mask\"><float name=\"opacity\" value=\"0.25\"/><bsdf type=\"twosided\"><bsdf type=\"diffuse\"/></bsdf></bsdf>
+<bsdf type=\"mask\"><texture type=\"bitmap\" name=\"opacity\"><string name=\"filename\" value=\"mask-opacity.png\"/></texture><bsdf type=\"diffuse\"/></bsdf>",
+        ),
+    );
+    let null = BsdfDesc::ThinDielectric {
+        int_ior: 1.0,
+        ext_ior: 1.0,
+        specular_reflectance: Vec3::ZERO,
+        specular_transmittance: Vec3::ONE,
+    };
+    let blend = |b: &BsdfDesc| match b {
+        BsdfDesc::Blend {
+            first,
+            second,
+            weight,
+        } => ((**first).clone(), (**second).clone(), *weight),
+        other => panic!("not a blend: {other:?}"),
+    };
+    let (first, second, weight) = blend(&desc.bsdfs[0]);
+    assert_eq!((first, weight), (null.clone(), 0.5));
+    assert!(matches!(second, BsdfDesc::Conductor { .. }));
+    let (first, second, weight) = blend(&desc.bsdfs[1]);
+    assert_eq!((first, weight), (null.clone(), 0.25));
+    assert!(matches!(second, BsdfDesc::TwoSided { .. }));
+    let BsdfDesc::BlendWeightBitmap { base, texture } = &desc.bsdfs[2] else {
+        panic!("not a bitmap opacity: {:?}", desc.bsdfs[2]);
+    };
+    let (first, second, weight) = blend(base);
+    assert_eq!((first, weight), (null, texture.mean_luminance()));
+    assert_eq!(second, BsdfDesc::default_diffuse());
+}
+
 /// `null` is an invisible surface: a thin slab of equal indices that reflects nothing.
 #[test]
 fn null_bsdf_is_a_clear_thin_slab() {

@@ -14,7 +14,7 @@ use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
 /// The BSDF plugins this loader understands.
-const SUPPORTED: [&str; 11] = [
+const SUPPORTED: [&str; 12] = [
     "diffuse",
     "conductor",
     "roughconductor",
@@ -25,6 +25,7 @@ const SUPPORTED: [&str; 11] = [
     "roughplastic",
     "twosided",
     "blendbsdf",
+    "mask",
     "null",
 ];
 
@@ -125,6 +126,7 @@ impl<'a> BsdfTable<'a> {
         let bsdf = match node.plugin.as_str() {
             "twosided" => self.twosided(node)?,
             "blendbsdf" => self.blend(node)?,
+            "mask" => self.mask(node)?,
             _ => self.one_sided(node)?,
         };
         crate::build::build_bsdf(&bsdf).map_err(|message| node.loc.error(message))?;
@@ -198,14 +200,7 @@ impl<'a> BsdfTable<'a> {
                     specular_transmittance: specular_transmittance(&mut params)?,
                 }
             }
-            // Mitsuba's invisible surface: light passes straight through it, a delta transmission
-            // of weight 1, which a thin slab of equal indices and no reflection is.
-            "null" => BsdfDesc::ThinDielectric {
-                int_ior: 1.0,
-                ext_ior: 1.0,
-                specular_reflectance: glam::Vec3::ZERO,
-                specular_transmittance: glam::Vec3::ONE,
-            },
+            "null" => null_bsdf(),
             "thindielectric" => BsdfDesc::ThinDielectric {
                 int_ior: ior(&mut params, "int_ior", 1.5046)? as f32,
                 ext_ior: ior(&mut params, "ext_ior", 1.000277)? as f32,
@@ -354,81 +349,69 @@ impl<'a> BsdfTable<'a> {
     /// fractional part above ½, the other way round from its colour lookups; a bitmap by its
     /// luminance), clamped to [0, 1] as Mitsuba clamps it.
     fn blend(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
-        let weight_texture = self.texture_param(node, "weight", &["bsdf"])?;
-        let mut params = Params::new(node);
-        let weight = params.float("weight")?;
-        let weight = match (&weight_texture, weight) {
-            (Some(_), Some(_)) => {
-                return Err(params
-                    .loc_of("weight")
-                    .error("\"weight\" is given twice (as a value and as a texture)"));
-            }
-            (None, None) => {
-                return Err(node.loc.error(
-                    "missing required parameter \"weight\" (a float in [0, 1] or a texture)",
-                ));
-            }
-            (None, Some(weight)) if !(0.0..=1.0).contains(&weight) => {
-                return Err(params
-                    .loc_of("weight")
-                    .error(format!("\"weight\" must be in [0, 1], got {weight}")));
-            }
-            (_, weight) => weight.unwrap_or(0.5) as f32,
-        };
-        params.finish()?;
+        let (weight_texture, weight) = self.weight_param(node, "weight", None)?;
         let mut nested = self
             .nested(node, Some("weight"))?
             .into_iter()
             .map(|(_, bsdf)| bsdf);
-        let (Some(first), Some(second)) = (nested.next(), nested.next()) else {
+        let (Some(first), Some(second), None) = (nested.next(), nested.next(), nested.next())
+        else {
             return Err(node.loc.error("blendbsdf needs two nested BSDFs"));
         };
-        if [&first, &second].iter().any(|b| {
-            matches!(
-                b,
-                BsdfDesc::DiffuseBitmap { .. } | BsdfDesc::BlendWeightBitmap { .. }
-            )
-        }) {
-            return Err(node
-                .loc
-                .error("a blendbsdf of a BSDF with a bitmap texture is not supported"));
-        }
-        let blend = |[first, second]: [BsdfDesc; 2], weight: f32| BsdfDesc::Blend {
-            first: Box::new(first),
-            second: Box::new(second),
-            weight: weight.clamp(0.0, 1.0),
-        };
-        let Some(texture) = weight_texture else {
-            return hoist_checkerboard(node, [first, second], |parts| blend(parts, weight));
-        };
-        if [&first, &second]
-            .iter()
-            .any(|b| matches!(b, BsdfDesc::Checkerboard { .. }))
-        {
-            return Err(node.loc.error(
-                "a blendbsdf with a textured weight of a BSDF with a checkerboard is not supported",
-            ));
-        }
-        Ok(match texture {
-            TextureDesc::Checkerboard {
-                color0,
-                color1,
-                to_uv,
-            } => {
-                let mean = |c: glam::Vec3| c.element_sum() / 3.0;
-                BsdfDesc::Checkerboard {
-                    even: Box::new(blend([first.clone(), second.clone()], mean(color1))),
-                    odd: Box::new(blend([first, second], mean(color0))),
-                    to_uv,
-                }
-            }
-            TextureDesc::Bitmap(texture) => BsdfDesc::BlendWeightBitmap {
-                base: Box::new(blend([first, second], texture.mean_luminance())),
-                texture,
-            },
-        })
+        blended(node, [first, second], weight_texture, weight)
     }
 
+    /// `mask`: one nested BSDF seen with probability `opacity` (a constant in [0, 1], default
+    /// ½, or a texture read as [`Self::blend`] reads a weight), the rest passing straight
+    /// through as Mitsuba's null BSDF: Mitsuba's `mask` is exactly a `blendbsdf` of `null`
+    /// (weight 0) and the nested BSDF (weight 1), down to its sampling and densities.
+    fn mask(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
+        let (opacity_texture, opacity) = self.weight_param(node, "opacity", Some(0.5))?;
+        let mut nested = self
+            .nested(node, Some("opacity"))?
+            .into_iter()
+            .map(|(_, bsdf)| bsdf);
+        let (Some(inner), None) = (nested.next(), nested.next()) else {
+            return Err(node.loc.error("mask needs exactly one nested BSDF"));
+        };
+        blended(node, [null_bsdf(), inner], opacity_texture, opacity)
+    }
+
+    /// A blend weight named `name` of `node` (`blendbsdf`'s `weight`, `mask`'s `opacity`): a
+    /// texture, or a constant in [0, 1] (`default` when absent, an error when there is none),
+    /// and the constant ½ beside a texture; an error when given both ways. Checks the node's
+    /// other parameters too.
+    fn weight_param(
+        &self,
+        node: &'a ObjectNode,
+        name: &'static str,
+        default: Option<f64>,
+    ) -> Result<(Option<TextureDesc>, f32)> {
+        let texture = self.texture_param(node, name, &["bsdf"])?;
+        let mut params = Params::new(node);
+        let weight = params.float(name)?;
+        let weight = match (&texture, weight.or(default)) {
+            (Some(_), Some(_)) if params.has(name) => {
+                return Err(params.loc_of(name).error(format!(
+                    "\"{name}\" is given twice (as a value and as a texture)"
+                )));
+            }
+            (None, None) => {
+                return Err(node.loc.error(format!(
+                    "missing required parameter \"{name}\" (a float in [0, 1] or a texture)"
+                )));
+            }
+            (None, Some(weight)) if !(0.0..=1.0).contains(&weight) => {
+                return Err(params
+                    .loc_of(name)
+                    .error(format!("\"{name}\" must be in [0, 1], got {weight}")));
+            }
+            (Some(_), _) => 0.5,
+            (None, Some(weight)) => weight as f32,
+        };
+        params.finish()?;
+        Ok((texture, weight))
+    }
     /// The object with a `tag` element that `reference` names, or an error at the reference.
     fn referenced(&self, reference: &RefNode, tag: &str) -> Result<&'a ObjectNode> {
         let Some(&node) = self.by_id.get(reference.id.as_str()) else {
@@ -537,6 +520,74 @@ fn textured(
             base: Box::new(make(glam::Vec3::splat(texture.mean_luminance()))),
             texture,
         },
+    }
+}
+
+/// `first` and `second` blended by `weight`, or by `weight_texture` when there is one
+/// ([`BsdfTable::blend`]); a checkerboard in either is hoisted above the blend. Nested textured
+/// BSDFs are refused, as are checkerboards beside a textured weight.
+fn blended(
+    node: &ObjectNode,
+    [first, second]: [BsdfDesc; 2],
+    weight_texture: Option<TextureDesc>,
+    weight: f32,
+) -> Result<BsdfDesc> {
+    if [&first, &second].iter().any(|b| {
+        matches!(
+            b,
+            BsdfDesc::DiffuseBitmap { .. } | BsdfDesc::BlendWeightBitmap { .. }
+        )
+    }) {
+        return Err(node.loc.error(format!(
+            "a {} of a BSDF with a bitmap texture is not supported",
+            node.plugin
+        )));
+    }
+    let blend = |[first, second]: [BsdfDesc; 2], weight: f32| BsdfDesc::Blend {
+        first: Box::new(first),
+        second: Box::new(second),
+        weight: weight.clamp(0.0, 1.0),
+    };
+    let Some(texture) = weight_texture else {
+        return hoist_checkerboard(node, [first, second], |parts| blend(parts, weight));
+    };
+    if [&first, &second]
+        .iter()
+        .any(|b| matches!(b, BsdfDesc::Checkerboard { .. }))
+    {
+        return Err(node.loc.error(format!(
+            "a {} with a textured weight of a BSDF with a checkerboard is not supported",
+            node.plugin
+        )));
+    }
+    Ok(match texture {
+        TextureDesc::Checkerboard {
+            color0,
+            color1,
+            to_uv,
+        } => {
+            let mean = |c: glam::Vec3| c.element_sum() / 3.0;
+            BsdfDesc::Checkerboard {
+                even: Box::new(blend([first.clone(), second.clone()], mean(color1))),
+                odd: Box::new(blend([first, second], mean(color0))),
+                to_uv,
+            }
+        }
+        TextureDesc::Bitmap(texture) => BsdfDesc::BlendWeightBitmap {
+            base: Box::new(blend([first, second], texture.mean_luminance())),
+            texture,
+        },
+    })
+}
+
+/// Mitsuba's `null`, an invisible surface: light passes straight through it, a delta
+/// transmission of weight 1, which a thin slab of equal indices and no reflection is.
+fn null_bsdf() -> BsdfDesc {
+    BsdfDesc::ThinDielectric {
+        int_ior: 1.0,
+        ext_ior: 1.0,
+        specular_reflectance: glam::Vec3::ZERO,
+        specular_transmittance: glam::Vec3::ONE,
     }
 }
 
