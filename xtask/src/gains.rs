@@ -122,6 +122,7 @@ impl Subject {
             russian_roulette: None,
             light_tracing: false,
             direct_samples: None,
+            skip_null_vertices: self.scene.desc.integrator.skip_null_vertices,
         }
     }
 
@@ -185,6 +186,7 @@ fn nee_on_the_small_light_box(root: &Path) -> Result<Claim, String> {
         max_depth: subject.max_depth(),
         hide_emitters: false,
         direct_samples: None,
+        skip_null_vertices: false,
     });
     let nee = Transport::Path(PathSettings {
         mis: Mis::Off,

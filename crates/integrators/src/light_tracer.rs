@@ -69,8 +69,10 @@ impl LightTracer {
     /// camera with an aperture (`camera_has_lens`) or a pinhole; `None` when the world has no
     /// area light with power, or when `settings` hide emitters: the camera then sees through area
     /// emitters, which its connections from light paths do not (the path tracer keeps those paths).
+    /// Also `None` when `settings` skip null vertices in a world with null lobes: the tracer
+    /// counts every pass through one as a vertex.
     pub fn new(world: &World, settings: &PathSettings, camera_has_lens: bool) -> Option<Self> {
-        if settings.hide_emitters {
+        if settings.hide_emitters || (settings.skip_null_vertices && world.has_null_lobes()) {
             return None;
         }
         let lights: Vec<u32> = (0..world.lights().len() as u32)

@@ -14,6 +14,8 @@ pub struct NextDirection {
     pub pdf_solid_angle: f32,
     /// Whether `wi` came from a delta lobe.
     pub is_delta: bool,
+    /// Whether `wi` passes straight on through a null lobe ([`materials::BsdfSample::is_null`]).
+    pub is_null: bool,
     /// Relative index of refraction crossed (1 for reflection).
     pub eta: f32,
 }
@@ -27,6 +29,7 @@ impl From<BsdfSample> for NextDirection {
             weight: s.f * s.wi.z.abs() / s.pdf_solid_angle,
             pdf_solid_angle: s.pdf_solid_angle,
             is_delta: s.is_delta,
+            is_null: s.is_null,
             eta: s.eta,
         }
     }

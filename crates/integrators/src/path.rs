@@ -84,7 +84,9 @@ impl PathIntegrator {
 
     /// The sampler dimensions [`Self::radiance`] draws at its first `vertices` path vertices, in
     /// the order of the module documentation: a dimension is one `next_1d` or `next_2d` call. A
-    /// path that ends sooner draws fewer, never other ones.
+    /// path that ends sooner draws fewer, never other ones; with
+    /// [`PathSettings::skip_null_vertices`] a pass through a null lobe draws a vertex's
+    /// dimensions without being a vertex.
     pub fn sampler_dimensions(&self, vertices: u32) -> u32 {
         let settings = &self.settings;
         let per_light_sample =
@@ -126,7 +128,7 @@ impl PathIntegrator {
         // Product of η² over the refractions so far: refraction scales radiance by 1/η², which
         // roulette must not mistake for absorption (pbrt-v4's `etaScale`, Mitsuba's `eta`).
         let mut eta_scale = 1.0_f32;
-        let mut ray = camera_ray.ray;
+        let CameraRay { mut ray, mut t_max } = camera_ray;
         let mut previous = PreviousVertex {
             p: ray.origin,
             pdf_dir: 0.0,
@@ -139,14 +141,15 @@ impl PathIntegrator {
         // Whether every bounce so far was by a delta lobe: what the path finds next, neither light
         // sampling nor the light tracer can reach.
         let mut seen_through_delta = true;
-        for depth in 1..=max_depth {
+        // The number of the vertex the ray is about to find: one more per bounce, not per pass
+        // through a null lobe with `skip_null_vertices`.
+        let mut depth = 1;
+        loop {
             let hidden = depth == 1 && settings.hide_emitters;
             let found = if hidden {
-                world.intersect_past_emitters(&camera_ray, counters, slot)
-            } else if depth == 1 {
-                world.intersect_within(&ray, camera_ray.t_max, counters, slot)
+                world.intersect_past_emitters(&CameraRay { ray, t_max }, counters, slot)
             } else {
-                world.intersect(&ray, counters, slot)
+                world.intersect_within(&ray, t_max, counters, slot)
             };
             let Some(surface) = found else {
                 if !hidden {
@@ -167,7 +170,9 @@ impl PathIntegrator {
                     throughput,
                 );
             }
-            if depth == max_depth {
+            // At the last vertex only a pass through a null lobe goes on.
+            let last = depth == max_depth;
+            if last && !(settings.skip_null_vertices && surface.bsdf.has_null_lobe()) {
                 break;
             }
             let wo = surface.frame.to_local(-ray.dir);
@@ -176,17 +181,10 @@ impl PathIntegrator {
                 break;
             }
 
-            if settings.sample_lights {
-                let u_choice = next_1d_if(sampler, self.draws_light_choice);
-                let u_point = sampler.next_2d();
-                if !surface.bsdf.is_delta() {
-                    radiance += throughput
-                        * self.direct_light(
-                            world, &surface, wo, u_choice, u_point, ONE_EACH, counters,
-                        );
-                }
-            } else if !surface.bsdf.is_delta() {
-                radiance += throughput * delta_lights(world, &surface, wo, counters);
+            // No light sampling at the last vertex: the light would be one vertex too many.
+            if !last {
+                radiance +=
+                    throughput * self.light_at_vertex(world, &surface, wo, sampler, counters);
             }
 
             let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
@@ -194,6 +192,10 @@ impl PathIntegrator {
             let Some(next) = self.next_direction(&surface, wo, u_lobe, u_dir) else {
                 break;
             };
+            let passes_null = settings.skip_null_vertices && next.is_null;
+            if last && !passes_null {
+                break;
+            }
             throughput *= next.weight;
             eta_scale *= next.eta * next.eta;
             seen_through_delta &= next.is_delta;
@@ -225,8 +227,36 @@ impl PathIntegrator {
                 surface.hit.ng,
                 surface.frame.to_world(next.wi),
             );
+            t_max = f32::INFINITY;
+            depth += u32::from(!passes_null);
         }
         radiance
+    }
+
+    /// Light that `surface` reflects towards `wo` straight from the lights, by next event
+    /// estimation (drawing its numbers at every vertex) when it is on, else from the delta lights
+    /// alone; nothing at a delta surface.
+    #[inline(always)]
+    fn light_at_vertex(
+        &self,
+        world: &World,
+        surface: &SurfaceHit<'_>,
+        wo: Vec3,
+        sampler: &mut impl Sampler,
+        counters: &mut impl RayTally,
+    ) -> Vec3 {
+        if self.settings.sample_lights {
+            let u_choice = next_1d_if(sampler, self.draws_light_choice);
+            let u_point = sampler.next_2d();
+            if surface.bsdf.is_delta() {
+                return Vec3::ZERO;
+            }
+            self.direct_light(world, surface, wo, u_choice, u_point, ONE_EACH, counters)
+        } else if surface.bsdf.is_delta() {
+            Vec3::ZERO
+        } else {
+            delta_lights(world, surface, wo, counters)
+        }
     }
 
     /// Mitsuba's `direct` integrator at the camera ray's hit `surface`: `samples.light` light

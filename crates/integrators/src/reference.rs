@@ -32,6 +32,9 @@ pub struct ReferenceSettings {
     /// samples, delta lights; with no BSDF samples, what a delta surface at the first vertex
     /// reflects or transmits.
     pub direct_samples: Option<DirectSamples>,
+    /// Mitsuba's volumetric path tracers' rule: a pass straight through a null lobe is not a
+    /// path vertex ([`crate::PathSettings::skip_null_vertices`]).
+    pub skip_null_vertices: bool,
 }
 
 /// Radiance (W m⁻² sr⁻¹, RGB) arriving at the camera along `ray`, one path's estimate.
@@ -48,19 +51,20 @@ pub fn radiance(
     let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
     let mut radiance = Vec3::ZERO;
     let mut throughput = Vec3::ONE;
-    let mut ray = camera_ray.ray;
+    let CameraRay { mut ray, mut t_max } = camera_ray;
     // Whether every bounce so far was by a delta lobe: emission found next is seen by the shading
     // normal, as the path tracer sees what neither light sampling nor light tracing reaches.
     let mut seen_through_delta = true;
     let mut slot = BsdfSlot::default();
-    for depth in 1..=max_depth {
+    // The number of the vertex the ray is about to find (passes through null lobes do not count
+    // with `skip_null_vertices`).
+    let mut depth = 1;
+    loop {
         let hidden = depth == 1 && settings.hide_emitters;
         let found = if hidden {
-            world.intersect_past_emitters(&camera_ray, counters, &mut slot)
-        } else if depth == 1 {
-            world.intersect_within(&ray, camera_ray.t_max, counters, &mut slot)
+            world.intersect_past_emitters(&CameraRay { ray, t_max }, counters, &mut slot)
         } else {
-            world.intersect(&ray, counters, &mut slot)
+            world.intersect_within(&ray, t_max, counters, &mut slot)
         };
         let Some(surface) = found else {
             if !hidden {
@@ -73,7 +77,9 @@ pub fn radiance(
         }
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
-        if depth == max_depth {
+        // At the last vertex only a pass through a null lobe goes on.
+        let last = depth == max_depth;
+        if last && !(settings.skip_null_vertices && surface.bsdf.has_null_lobe()) {
             break;
         }
         let p = surface.hit.p;
@@ -81,13 +87,17 @@ pub fn radiance(
         let wo = surface.frame.to_local(-ray.dir);
 
         let first_direct = settings.direct_samples.filter(|_| depth == 1);
-        if first_direct.is_none_or(|s| s.light > 0) {
+        if !last && first_direct.is_none_or(|s| s.light > 0) {
             radiance += throughput * delta_lights(world, &surface, wo, counters);
         }
 
         let Some(step) = sample_without_importance(surface.bsdf, wo, u_lobe, u_dir) else {
             break;
         };
+        let passes_null = settings.skip_null_vertices && step.is_null;
+        if last && !passes_null {
+            break;
+        }
         if step.is_delta && first_direct.is_some_and(|s| s.bsdf == 0) {
             break;
         }
@@ -98,6 +108,8 @@ pub fn radiance(
             break;
         }
         ray = Ray::spawn(p, ng, surface.frame.to_world(wi));
+        t_max = f32::INFINITY;
+        depth += u32::from(!passes_null);
     }
     radiance
 }

@@ -89,6 +89,16 @@ pub struct PathSettings {
     /// `None` walks the path. With counts, `max_depth` must be 2 and roulette and light tracing
     /// have nothing to act on.
     pub direct_samples: Option<DirectSamples>,
+    /// Mitsuba's volumetric path tracers (`volpath`, `volpathmis`, `prbvolpath`): a pass straight
+    /// through a null lobe ([`materials::BsdfSample::is_null`]: `null`, a mask's transparency, a
+    /// thin dielectric's transmission) is not a path vertex, so it does not count towards
+    /// `max_depth` (a path goes on through one at its last vertex), the camera's first segment
+    /// goes on through it (hidden emitters stay hidden behind it), and it draws a vertex's
+    /// sampler dimensions again. Mitsuba's shadow rays pass null surfaces too; here they stop at
+    /// them, as in `path`, so light behind one is found by BSDF samples alone: the same image,
+    /// with other noise. Light tracing does not know the rule and must be off where null lobes
+    /// are.
+    pub skip_null_vertices: bool,
 }
 
 impl Default for PathSettings {
@@ -103,6 +113,7 @@ impl Default for PathSettings {
             russian_roulette: None,
             light_tracing: false,
             direct_samples: None,
+            skip_null_vertices: false,
         }
     }
 }

@@ -46,6 +46,7 @@ pub fn sample_without_importance(
         weight: f * wi.z.abs() / pdf_solid_angle,
         pdf_solid_angle,
         is_delta: false,
+        is_null: false,
         eta: 1.0,
     })
 }

@@ -299,6 +299,11 @@ impl World {
         self.materials.iter().any(Bsdf::uses_lobe_choice)
     }
 
+    /// Whether some material has a null lobe ([`Bsdf::has_null_lobe`]: a pass straight through).
+    pub fn has_null_lobes(&self) -> bool {
+        self.materials.iter().any(Bsdf::has_null_lobe)
+    }
+
     /// The acceleration structure over all shapes.
     pub fn accel(&self) -> &Accel {
         &self.accel

@@ -29,6 +29,11 @@ pub struct BsdfSample {
     pub pdf_solid_angle: f32,
     /// Whether `wi` came from a delta lobe (perfect mirror or refraction).
     pub is_delta: bool,
+    /// Whether `wi` continues straight on through the surface (`wi = −wo`, no refraction): a
+    /// thin dielectric's transmission, Mitsuba's null lobe (its `null` and `mask` are read as
+    /// thin slabs of index 1). Mitsuba's volumetric path tracers do not count such a pass as a
+    /// path vertex.
+    pub is_null: bool,
     /// The relative index of refraction crossed: η (inside over outside) when entering a
     /// dielectric, 1/η when leaving it, 1 for reflection.
     pub eta: f32,
@@ -232,6 +237,18 @@ impl Bsdf {
             Self::Blend(b) => b.first().has_delta_lobe() || b.second().has_delta_lobe(),
             Self::Plastic(_) => true,
             _ => self.is_delta(),
+        }
+    }
+
+    /// Whether some sample can have `is_null` set ([`BsdfSample::is_null`]): a thin dielectric,
+    /// alone or in a blend.
+    #[inline]
+    pub fn has_null_lobe(&self) -> bool {
+        match self {
+            Self::ThinDielectric(_) => true,
+            Self::TwoSided(b) => b.front().has_null_lobe() || b.back().has_null_lobe(),
+            Self::Blend(b) => b.first().has_null_lobe() || b.second().has_null_lobe(),
+            _ => false,
         }
     }
 

@@ -39,6 +39,7 @@ impl Conductor {
             pdf_solid_angle: 1.0,
             is_delta: true,
             eta: 1.0,
+            is_null: false,
         })
     }
 }

@@ -79,6 +79,7 @@ impl Dielectric {
             pdf_solid_angle: pdf,
             is_delta: true,
             eta,
+            is_null: false,
         })
     }
 }

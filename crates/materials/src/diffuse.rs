@@ -62,6 +62,7 @@ impl Diffuse {
             pdf_solid_angle: pdf,
             is_delta: false,
             eta: 1.0,
+            is_null: false,
         })
     }
 }

@@ -151,6 +151,7 @@ impl Plastic {
             pdf_solid_angle: probability,
             is_delta: true,
             eta: 1.0,
+            is_null: false,
         }
     }
 
@@ -175,6 +176,7 @@ impl Plastic {
             pdf_solid_angle: pdf,
             is_delta: false,
             eta: 1.0,
+            is_null: false,
         })
     }
 }

@@ -107,6 +107,7 @@ impl RoughConductor {
             pdf_solid_angle: pdf,
             is_delta: false,
             eta: 1.0,
+            is_null: false,
         })
     }
 

@@ -189,6 +189,7 @@ impl RoughDielectric {
             pdf_solid_angle: pdf,
             is_delta: false,
             eta,
+            is_null: false,
         })
     }
 }

@@ -203,6 +203,7 @@ impl RoughPlastic {
             pdf_solid_angle: pdf,
             is_delta: false,
             eta: 1.0,
+            is_null: false,
         })
     }
 

@@ -63,10 +63,11 @@ impl ThinDielectric {
     /// medium it came from). The ray crosses no index (`eta` 1 either way).
     pub fn sample(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
         let r = self.reflectance(wo.z);
-        let (wi, pdf, weight) = if u_lobe < r {
-            (reflect(wo), r, self.specular_reflectance)
-        } else {
+        let is_null = u_lobe >= r;
+        let (wi, pdf, weight) = if is_null {
             (-wo, 1.0 - r, self.specular_transmittance)
+        } else {
+            (reflect(wo), r, self.specular_reflectance)
         };
         let cos_i = wi.z.abs();
         (pdf > 0.0 && cos_i > 0.0).then(|| BsdfSample {
@@ -75,6 +76,7 @@ impl ThinDielectric {
             pdf_solid_angle: pdf,
             is_delta: true,
             eta: 1.0,
+            is_null,
         })
     }
 }

@@ -106,6 +106,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
     // `--max-depth` other than 2 turns a direct scene into a path-traced one.
     let direct_samples = direct.filter(|_| max_depth == Some(2));
     let hide_emitters = desc.integrator.hide_emitters;
+    let skip_null_vertices = desc.integrator.skip_null_vertices;
     let roulette = Some(RussianRoulette {
         start_depth: desc.integrator.rr_depth.max(1),
     });
@@ -119,6 +120,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         russian_roulette: roulette,
         light_tracing: false,
         direct_samples,
+        skip_null_vertices,
     };
     let mis = PathSettings {
         mis: Mis::Power,
@@ -129,6 +131,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             max_depth,
             hide_emitters,
             direct_samples,
+            skip_null_vertices,
         }),
         IntegratorPreset::Nee => Transport::Path(nee),
         IntegratorPreset::Mis => Transport::Path(mis),
@@ -147,7 +150,12 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         // `auto` traces caustics from the lights wherever that applies.
         let auto_traces = args.integrator == IntegratorPreset::Auto;
         settings.light_tracing = (args.light_tracing || auto_traces)
-            && light_tracing_applies(features, settings.max_depth, !desc.sensor.orthographic)
+            && light_tracing_applies(
+                features,
+                settings.max_depth,
+                !desc.sensor.orthographic,
+                settings.skip_null_vertices,
+            )
             && !settings.hide_emitters;
     }
 
@@ -232,16 +240,19 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
 /// sampled point of its aperture), with any reconstruction filter (a light path splats into
 /// every pixel whose camera samples can reach its film position, weighted by the filter).
 /// A caustic path needs three vertices after the camera (diffuse, delta, light), so none fits
-/// a `max_depth` of 2 or less.
+/// a `max_depth` of 2 or less. The light tracer counts every pass through a null lobe as a
+/// vertex, so it is left out where `skip_null_vertices` (Mitsuba's `volpath`) meets null lobes.
 pub fn light_tracing_applies(
     features: &SceneFeatures,
     max_depth: Option<u32>,
     camera_connects: bool,
+    skip_null_vertices: bool,
 ) -> bool {
     camera_connects
         && features.has_delta_bsdfs
         && features.has_hittable_lights()
         && max_depth.is_none_or(|depth| depth >= 3)
+        && !(skip_null_vertices && features.has_null_lobes)
 }
 
 /// A 64-bit seed from the command line folded into the sampler's 32 bits.
@@ -262,6 +273,7 @@ mod tests {
             area_light_count: area,
             has_environment: environment,
             has_glossy_bsdfs: glossy,
+            has_null_lobes: false,
         }
     }
 

@@ -264,6 +264,7 @@ fn the_reference_leaves_out_what_zero_counts_leave_out() {
                 max_depth: Some(2),
                 hide_emitters: false,
                 direct_samples,
+                skip_null_vertices: false,
             })
         };
         let counts = Some(DirectSamples { light, bsdf });

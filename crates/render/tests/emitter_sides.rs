@@ -48,6 +48,7 @@ fn smooth_emitters_seen_directly_emit_on_their_shading_side() {
                     max_depth: Some(1),
                     hide_emitters: false,
                     direct_samples: None,
+                    skip_null_vertices: false,
                 }),
             ),
             ("mis", Transport::Path(mis_power(Some(1), false))),

@@ -87,6 +87,7 @@ fn hidden_emitters_show_what_lies_behind_them() {
             max_depth: Some(2),
             hide_emitters,
             direct_samples: None,
+            skip_null_vertices: false,
         })
     };
     let expected = render_at(&bare, reference(true), "reference, no emitters");

@@ -19,7 +19,7 @@ use common::{
     Configuration, Target, configurations, film_mean, load_file, mis_power, render, scenes_dir,
     z_test,
 };
-use integrators::Mis;
+use integrators::{Mis, PathSettings};
 use render::technique::Transport;
 use sampling::sampler::SamplerKind;
 
@@ -74,10 +74,13 @@ fn check_scene(name: &str, budget: Budget) {
 /// [`check_scene`] with the scene's `$NAME` defaults set as `overrides` gives them.
 fn check_scene_with(name: &str, overrides: &[(&str, &str)], budget: Budget) {
     let scene = load_file(&scenes_dir().join(name), overrides, SIZE, SIZE);
-    let base = mis_power(
-        common::max_depth(&scene),
-        scene.desc.integrator.hide_emitters,
-    );
+    let base = PathSettings {
+        skip_null_vertices: scene.desc.integrator.skip_null_vertices,
+        ..mis_power(
+            common::max_depth(&scene),
+            scene.desc.integrator.hide_emitters,
+        )
+    };
     let (oracle, reference_spp, oracle_name) = match budget.oracle {
         Oracle::Reference { spp } => (common::reference(&scene), spp, "reference"),
         Oracle::HighSampleMis { spp } => (Transport::Path(base), spp, "high-spp mis"),
@@ -262,6 +265,19 @@ fn mask() {
             oracle: Oracle::Reference { spp: 8192 },
             ..EASY
         },
+    );
+}
+
+/// Mitsuba's `volpath` on surfaces, where passes through null lobes (an invisible card, a
+/// thin pane, a mask, a glowing null sphere) are not path vertices, at `max_depth` 3 with hidden
+/// emitters, from the Mitsuba crosscheck scenes.
+#[test]
+fn volpath_null_vertices() {
+    check_scene("../tests/crosscheck/volpath.xml", EASY);
+    check_scene_with(
+        "../tests/crosscheck/volpath.xml",
+        &[("hide", "false")],
+        EASY,
     );
 }
 

@@ -19,6 +19,9 @@ pub struct SceneFeatures {
     /// True when some material has a delta lobe (mirror, smooth dielectric, or a twosided
     /// with one on either side).
     pub has_delta_bsdfs: bool,
+    /// True when some material has a null lobe ([`Bsdf::has_null_lobe`]: `null`, a mask, a thin
+    /// dielectric), which Mitsuba's volumetric path tracers do not count as a path vertex.
+    pub has_null_lobes: bool,
 }
 
 impl SceneFeatures {
@@ -44,6 +47,7 @@ impl SceneFeatures {
                 .count(),
             has_environment: lights.iter().any(Light::is_environment),
             has_glossy_bsdfs: materials.iter().any(Bsdf::is_glossy),
+            has_null_lobes: materials.iter().any(Bsdf::has_null_lobe),
         }
     }
 }

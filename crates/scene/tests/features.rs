@@ -974,8 +974,9 @@ fn orthographic_sensor() {
 
 /// `volpath`, `volpathmis`, `prb` and `prbvolpath` read as the path tracer with the same
 /// parameters (Strata reads no media, and without media Mitsuba's volumetric path tracers are its
-/// path tracer; the path replay integrators render the path tracer's image), the last two with
-/// Mitsuba's default depth 6 when the file gives none.
+/// path tracer but for passes through null lobes, which are no path vertices to them; the path
+/// replay integrators render `path`'s and `volpath`'s images), the last two with Mitsuba's
+/// default depth 6 when the file gives none.
 #[test]
 fn volumetric_path_tracers_are_the_path_tracer() {
     for plugin in ["volpath", "volpathmis", "prb", "prbvolpath"] {
@@ -1003,7 +1004,14 @@ fn volumetric_path_tracers_are_the_path_tracer() {
         let desc = ok(&format!("{plugin}-defaults.xml"), &defaults);
         let depth = if plugin.starts_with("prb") { 6 } else { -1 };
         assert_eq!(desc.integrator.max_depth, depth, "{plugin}");
+        assert_eq!(
+            desc.integrator.skip_null_vertices,
+            plugin != "prb",
+            "{plugin}"
+        );
     }
+    let path = ok("path.xml", &wrap(""));
+    assert!(!path.integrator.skip_null_vertices);
 }
 
 #[test]

@@ -36,6 +36,8 @@ pub struct SceneTransport {
     pub light_tracing: bool,
     /// The sample counts of a `direct` integrator (`None` for `path`).
     pub direct_samples: Option<DirectSamples>,
+    /// Whether a pass through a null lobe is not a path vertex (Mitsuba's `volpath`).
+    pub skip_null_vertices: bool,
 }
 
 impl SceneTransport {
@@ -52,6 +54,7 @@ impl SceneTransport {
             russian_roulette: None,
             light_tracing: false,
             direct_samples: self.direct_samples,
+            skip_null_vertices: self.skip_null_vertices,
         }
     }
 }
@@ -80,6 +83,7 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
             max_depth: transport.max_depth,
             hide_emitters: transport.hide_emitters,
             direct_samples: transport.direct_samples,
+            skip_null_vertices: transport.skip_null_vertices,
         }),
         sampler: independent,
         adaptive: false,
@@ -174,6 +178,7 @@ mod tests {
             roulette: RussianRoulette { start_depth: 5 },
             light_tracing: false,
             direct_samples: None,
+            skip_null_vertices: false,
         }
     }
 
@@ -185,6 +190,7 @@ mod tests {
             area_light_count: if has_delta_lights { 0 } else { light_count },
             has_environment: false,
             has_glossy_bsdfs: false,
+            has_null_lobes: false,
         }
     }
 

@@ -56,7 +56,9 @@ impl SuiteScene {
                 &self.scene.features,
                 max_depth,
                 self.scene.camera.connects(),
+                integrator.skip_null_vertices,
             ),
+            skip_null_vertices: integrator.skip_null_vertices,
         }
     }
 }

@@ -92,6 +92,7 @@ pub fn reference(scene: &RenderScene) -> Transport {
         max_depth: max_depth(scene),
         hide_emitters: scene.desc.integrator.hide_emitters,
         direct_samples: None,
+        skip_null_vertices: scene.desc.integrator.skip_null_vertices,
     })
 }
 
@@ -150,6 +151,7 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
         russian_roulette: None,
         light_tracing: false,
         direct_samples: None,
+        skip_null_vertices: false,
     }
 }
 

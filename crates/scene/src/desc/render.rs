@@ -31,6 +31,11 @@ pub struct IntegratorDesc {
     pub rr_depth: u32,
     /// Whether emitters seen directly by the camera are hidden (default false).
     pub hide_emitters: bool,
+    /// Mitsuba's volumetric path tracers (`volpath`, `volpathmis`, `prbvolpath`): a pass straight
+    /// through a null lobe (`null`, a mask's transparency, a thin dielectric's transmission) is
+    /// not a path vertex and does not count towards `max_depth`. False for `path`, `prb` and
+    /// `direct`.
+    pub skip_null_vertices: bool,
 }
 
 /// The image axis that a field of view applies to (`fov_axis`).

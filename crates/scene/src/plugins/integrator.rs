@@ -1,6 +1,7 @@
 //! `<integrator type="path">` (and `volpath`, `volpathmis`, which are the path tracer in scenes
-//! without participating media, the only scenes Strata reads; and the differentiable variants'
-//! `prb` and `prbvolpath`, whose images are the path tracer's) and `<integrator type="direct">`.
+//! without participating media, the only scenes Strata reads, but for passes through null lobes,
+//! which are not path vertices to them; and the differentiable variants' `prb` and
+//! `prbvolpath`, whose images are `path`'s and `volpath`'s) and `<integrator type="direct">`.
 
 use super::{no_children, unknown_type};
 use crate::desc::{IntegratorDesc, IntegratorKind};
@@ -34,12 +35,14 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
             rr_depth: params.integer_in("rr_depth", DEFAULT_RR_DEPTH, 1, i64::from(u32::MAX))?
                 as u32,
             hide_emitters: params.boolean_or("hide_emitters", false)?,
+            skip_null_vertices: node.plugin.contains("volpath"),
         },
         "direct" => IntegratorDesc {
             kind: direct_samples(&mut params, node)?,
             max_depth: 2,
             rr_depth: DEFAULT_RR_DEPTH as u32,
             hide_emitters: params.boolean_or("hide_emitters", false)?,
+            skip_null_vertices: false,
         },
         _ => {
             return Err(unknown_type(
