@@ -153,7 +153,7 @@ fn display_format() {
     let text = err.to_string();
     assert!(
         text.ends_with(
-            "display.xml:4:1: <shape type=\"foo\">: unknown shape type \"foo\" (supported: obj, ply, rectangle, cube, disk, sphere, cylinder)"
+            "display.xml:4:1: <shape type=\"foo\">: unknown shape type \"foo\" (supported: obj, ply, serialized, rectangle, cube, disk, sphere, cylinder)"
         ),
         "{text}"
     );

@@ -10,7 +10,7 @@ use super::shape::{check_invertible, place_sphere, shape};
 use super::unexpected_child;
 use crate::desc::{Geometry, ShapeDesc};
 use crate::error::Result;
-use crate::mesh::place::{Shading, place};
+use crate::mesh::place::{Mirroring, Shading, place};
 use crate::params::Params;
 use crate::xml::tree::{Child, ObjectNode};
 
@@ -83,8 +83,14 @@ impl<'a> ShapeGroups<'a> {
                             Shading::Flat
                         };
                         Geometry::Mesh(
-                            place(mesh.clone(), &to_world, false, shading)
-                                .map_err(|e| to_world_loc.error(e))?,
+                            place(
+                                mesh.clone(),
+                                &to_world,
+                                false,
+                                shading,
+                                Mirroring::KeepsSides,
+                            )
+                            .map_err(|e| to_world_loc.error(e))?,
                         )
                     }
                     Geometry::Sphere(sphere) => Geometry::Sphere(

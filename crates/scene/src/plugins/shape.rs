@@ -1,4 +1,5 @@
-//! `<shape>`: obj, ply, rectangle, cube, disk and sphere, with their BSDF and area emitter.
+//! `<shape>`: obj, ply, serialized, rectangle, cube, disk, cylinder and sphere, with their BSDF
+//! and area emitter.
 
 use glam::{DMat3, DMat4, DVec3};
 
@@ -9,15 +10,17 @@ use crate::desc::{Geometry, MeshDesc, ShapeDesc, SphereDesc};
 use crate::error::{Loc, Result};
 use crate::mesh::canonical::{cube, cylinder, disk, rectangle};
 use crate::mesh::obj::read_obj;
-use crate::mesh::place::{Shading, place};
+use crate::mesh::place::{Mirroring, Shading, place};
 use crate::mesh::ply::read_ply;
+use crate::mesh::serialized::read_serialized;
 use crate::params::Params;
 use crate::xml::tree::{Child, ObjectNode};
 
 /// The shape plugins this loader understands.
-const SUPPORTED: [&str; 7] = [
+const SUPPORTED: [&str; 8] = [
     "obj",
     "ply",
+    "serialized",
     "rectangle",
     "cube",
     "disk",
@@ -57,13 +60,19 @@ pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Resu
         "sphere" => Geometry::Sphere(sphere(&mut params, &to_world, flip_normals)?),
         "cylinder" => {
             let object_to_world = to_world * cylinder_frame(&mut params)?;
-            let placed = place(cylinder(), &object_to_world, flip_normals, Shading::Smooth)
-                .map_err(|e| to_world_loc.error(e))?;
+            let placed = place(
+                cylinder(),
+                &object_to_world,
+                flip_normals,
+                Shading::Smooth,
+                Mirroring::KeepsSides,
+            )
+            .map_err(|e| to_world_loc.error(e))?;
             Geometry::Mesh(placed)
         }
         plugin => {
             let (mesh, shading) = match plugin {
-                "obj" | "ply" => mesh_file(&mut params, plugin)?,
+                "obj" | "ply" | "serialized" => mesh_file(&mut params, plugin)?,
                 "rectangle" => (rectangle(), Shading::Flat),
                 "disk" => (disk(), Shading::Flat),
                 _ => {
@@ -72,8 +81,13 @@ pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Resu
                     (cube(), Shading::Flat)
                 }
             };
-            let placed =
-                place(mesh, &to_world, flip_normals, shading).map_err(|e| to_world_loc.error(e))?;
+            let mirroring = if matches!(plugin, "obj" | "ply" | "serialized") {
+                Mirroring::TurnsSides
+            } else {
+                Mirroring::KeepsSides
+            };
+            let placed = place(mesh, &to_world, flip_normals, shading, mirroring)
+                .map_err(|e| to_world_loc.error(e))?;
             Geometry::Mesh(placed)
         }
     };
@@ -104,7 +118,8 @@ pub(crate) fn check_invertible(m: &DMat4, loc: &Loc) -> Result<()> {
     Ok(())
 }
 
-/// An `obj` or `ply` mesh read from `filename` (relative to the scene file's directory).
+/// An `obj`, `ply` or `serialized` mesh (mesh `shape_index` of the file) read from `filename`
+/// (relative to the scene file's directory).
 fn mesh_file(params: &mut Params, plugin: &str) -> Result<(MeshDesc, Shading)> {
     let (filename, loc) = params.string("filename")?.ok_or_else(|| {
         params
@@ -112,16 +127,22 @@ fn mesh_file(params: &mut Params, plugin: &str) -> Result<(MeshDesc, Shading)> {
             .error("missing required parameter \"filename\"")
     })?;
     let face_normals = params.boolean_or("face_normals", false)?;
-    let flip_tex_coords = params.boolean_or("flip_tex_coords", plugin == "obj")?;
+    let flip_tex_coords =
+        plugin != "serialized" && params.boolean_or("flip_tex_coords", plugin == "obj")?;
+    let shape_index = if plugin == "serialized" {
+        params.integer_in("shape_index", 0, 0, i64::from(u32::MAX))? as u32
+    } else {
+        0
+    };
     let dir = loc.file.parent().unwrap_or(std::path::Path::new(""));
     let path = dir.join(filename);
     if !path.is_file() {
         return Err(loc.error(format!("mesh file \"{}\" not found", path.display())));
     }
-    let result = if plugin == "obj" {
-        read_obj(&path, flip_tex_coords)
-    } else {
-        read_ply(&path)
+    let result = match plugin {
+        "obj" => read_obj(&path, flip_tex_coords),
+        "ply" => read_ply(&path),
+        _ => read_serialized(&path, shape_index),
     };
     let mut mesh = result.map_err(|e| {
         loc.error(format!(
