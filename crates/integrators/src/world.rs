@@ -42,9 +42,15 @@ pub enum MaterialTexture {
     /// The diffuse albedo ([`Bsdf::with_diffuse_reflectance`]) of the BSDF the hit sees is the
     /// bitmap's value there.
     DiffuseReflectance(Arc<BitmapTexture>),
-    /// The weight ([`Bsdf::with_blend_weight`]) of the blend the hit sees is the bitmap's
-    /// luminance there.
-    BlendWeight(Arc<BitmapTexture>),
+    /// The blend the hit sees takes bitmaps' values there ([`Bsdf::with_blend_textures`]): its
+    /// weight a bitmap's luminance, either BSDF's diffuse reflectance a bitmap's colour, each
+    /// where one is given.
+    Blend {
+        /// The bitmap whose luminance is the weight.
+        weight: Option<Arc<BitmapTexture>>,
+        /// The bitmaps of the first and the second BSDF's diffuse reflectances.
+        reflectances: [Option<Arc<BitmapTexture>>; 2],
+    },
 }
 
 /// Room for the BSDF of a textured hit, which exists only for that hit: the integrators keep
@@ -204,17 +210,24 @@ impl World {
                 }
                 Some(
                     texture @ (MaterialTexture::DiffuseReflectance(_)
-                    | MaterialTexture::BlendWeight(_)),
+                    | MaterialTexture::Blend { .. }),
                 ) => {
                     let sides = match &self.materials[i] {
                         Bsdf::TwoSided(two_sided) => [two_sided.front(), two_sided.back()],
                         bsdf => [bsdf, bsdf],
                     };
                     let (fits, needed) = match texture {
-                        MaterialTexture::BlendWeight(_) => (
-                            sides.iter().all(|s| s.with_blend_weight(0.5).is_some()),
-                            "a blend",
-                        ),
+                        MaterialTexture::Blend { reflectances, .. } => {
+                            let values = reflectances
+                                .each_ref()
+                                .map(|r| r.as_ref().map(|_| Vec3::ONE));
+                            (
+                                sides
+                                    .iter()
+                                    .all(|s| s.with_blend_textures(Some(0.5), values).is_some()),
+                                "a blend (of BSDFs with diffuse reflectances where textured)",
+                            )
+                        }
                         _ => (
                             sides
                                 .iter()
@@ -279,9 +292,15 @@ impl World {
                     MaterialTexture::DiffuseReflectance(bitmap) => {
                         side.with_diffuse_reflectance(bitmap.eval(uv))
                     }
-                    MaterialTexture::BlendWeight(bitmap) => {
-                        side.with_blend_weight(bitmap.eval_luminance(uv))
-                    }
+                    MaterialTexture::Blend {
+                        weight,
+                        reflectances,
+                    } => side.with_blend_textures(
+                        weight.as_ref().map(|w| w.eval_luminance(uv)),
+                        reflectances
+                            .each_ref()
+                            .map(|r| r.as_ref().map(|r| r.eval(uv))),
+                    ),
                     MaterialTexture::Checkerboard(_) => None,
                 };
                 match textured {

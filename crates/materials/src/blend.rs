@@ -15,7 +15,7 @@ use std::sync::Arc;
 /// weight, which is the chosen BSDF's.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Blend {
-    /// Shared by the copies [`Self::with_weight`] makes.
+    /// Shared by the copies [`Self::with_textures`] makes.
     first: Arc<Bsdf>,
     second: Arc<Bsdf>,
     weight: f32,
@@ -36,13 +36,26 @@ impl Blend {
         })
     }
 
-    /// The same two BSDFs blended by `weight` clamped to [0, 1], as Mitsuba clamps a texture's
-    /// weight at each hit; shares the BSDFs (no allocation).
-    pub fn with_weight(&self, weight: f32) -> Self {
-        Self {
-            weight: weight.clamp(0.0, 1.0),
-            ..self.clone()
-        }
+    /// The blend with a texture's values at a hit: `weight` (clamped to [0, 1], as Mitsuba clamps
+    /// a texture's weight) in place of its own unless `None`, and each BSDF with the diffuse
+    /// reflectance given for it ([`Bsdf::with_diffuse_reflectance`]), RGB in [0, 1]; `None` when
+    /// a BSDF given one has no diffuse reflectance. The BSDFs given none are shared (no
+    /// allocation); each one given a reflectance is allocated anew.
+    pub fn with_textures(
+        &self,
+        weight: Option<f32>,
+        reflectances: [Option<Vec3>; 2],
+    ) -> Option<Self> {
+        let part = |bsdf: &Arc<Bsdf>, reflectance: Option<Vec3>| match reflectance {
+            None => Some(Arc::clone(bsdf)),
+            Some(reflectance) => bsdf.with_diffuse_reflectance(reflectance).map(Arc::new),
+        };
+        Some(Self {
+            first: part(&self.first, reflectances[0])?,
+            second: part(&self.second, reflectances[1])?,
+            weight: weight.map_or(self.weight, |w| w.clamp(0.0, 1.0)),
+            is_delta: self.is_delta,
+        })
     }
 
     /// The BSDF at weight 0.

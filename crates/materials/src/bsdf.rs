@@ -285,8 +285,9 @@ impl Bsdf {
 
     /// This BSDF with its diffuse albedo replaced by the RGB `reflectance` (a texture's value at
     /// a hit): a [`Diffuse`] with that reflectance, a [`Plastic`] or [`RoughPlastic`] with that
-    /// base ([`Plastic::with_diffuse_reflectance`]); `None` for BSDFs that have no diffuse albedo
-    /// to replace, or whose copy would allocate.
+    /// base ([`Plastic::with_diffuse_reflectance`]), a [`TwoSided`] with both sides so (which
+    /// allocates them; integrators resolve a surface's own two-sided BSDF to its side first);
+    /// `None` for BSDFs that have no diffuse albedo to replace.
     pub fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Self> {
         match self {
             Self::Diffuse(_) => Some(Self::Diffuse(Diffuse::new(reflectance))),
@@ -294,15 +295,21 @@ impl Bsdf {
             Self::RoughPlastic(b) => {
                 Some(Self::RoughPlastic(b.with_diffuse_reflectance(reflectance)))
             }
+            Self::TwoSided(b) => b.with_diffuse_reflectance(reflectance).map(Self::TwoSided),
             _ => None,
         }
     }
 
-    /// A [`Blend`] with its weight replaced by `weight` (a texture's value at a hit, clamped to
-    /// [0, 1] by [`Blend::with_weight`]); `None` for other BSDFs.
-    pub fn with_blend_weight(&self, weight: f32) -> Option<Self> {
+    /// A [`Blend`] with a texture's values at a hit ([`Blend::with_textures`]: its weight and
+    /// either BSDF's diffuse reflectance); `None` for other BSDFs, or when a BSDF given a
+    /// reflectance has none.
+    pub fn with_blend_textures(
+        &self,
+        weight: Option<f32>,
+        reflectances: [Option<Vec3>; 2],
+    ) -> Option<Self> {
         match self {
-            Self::Blend(b) => Some(Self::Blend(b.with_weight(weight))),
+            Self::Blend(b) => b.with_textures(weight, reflectances).map(Self::Blend),
             _ => None,
         }
     }

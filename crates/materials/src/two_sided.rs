@@ -37,6 +37,16 @@ impl TwoSided {
         })
     }
 
+    /// Both sides with their diffuse albedo replaced by `reflectance`
+    /// ([`Bsdf::with_diffuse_reflectance`]); `None` unless both have one.
+    pub fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Self> {
+        Some(Self {
+            front: Box::new(self.front.with_diffuse_reflectance(reflectance)?),
+            back: Box::new(self.back.with_diffuse_reflectance(reflectance)?),
+            is_delta: self.is_delta,
+        })
+    }
+
     /// The BSDF on the side of the normal, which sees only `wo` with z ≥ 0.
     pub fn front(&self) -> &Bsdf {
         &self.front

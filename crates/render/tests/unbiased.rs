@@ -268,6 +268,14 @@ fn mask() {
     );
 }
 
+/// Blends and masks of BSDFs with bitmap albedos (Mitsuba's leaf: a bitmap mask around a
+/// twosided diffuse with a bitmap reflectance; a JPEG diffuse blended with rough gold; a rough
+/// plastic with an OpenEXR base blended by a PNG), from the Mitsuba crosscheck scenes.
+#[test]
+fn textured_blends() {
+    check_scene("../tests/crosscheck/textured-blend.xml", EASY);
+}
+
 /// Mitsuba's `volpath` on surfaces, where passes through null lobes (an invisible card, a
 /// thin pane, a mask, a glowing null sphere) are not path vertices, at `max_depth` 3 with hidden
 /// emitters, from the Mitsuba crosscheck scenes.

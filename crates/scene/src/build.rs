@@ -64,8 +64,15 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
             BsdfDesc::DiffuseBitmap { texture, .. } => {
                 textures[i] = Some(MaterialTexture::DiffuseReflectance(texture.clone()));
             }
-            BsdfDesc::BlendWeightBitmap { texture, .. } => {
-                textures[i] = Some(MaterialTexture::BlendWeight(texture.clone()));
+            BsdfDesc::TexturedBlend {
+                weight,
+                reflectances,
+                ..
+            } => {
+                textures[i] = Some(MaterialTexture::Blend {
+                    weight: weight.clone(),
+                    reflectances: reflectances.clone(),
+                });
             }
             _ => {}
         }
@@ -330,7 +337,7 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
             build_bsdf(odd)?;
             build_bsdf(even)?
         }
-        BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::BlendWeightBitmap { base, .. } => {
+        BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::TexturedBlend { base, .. } => {
             build_bsdf(base)?
         }
         BsdfDesc::TwoSided { front, back } => Bsdf::TwoSided(

@@ -106,14 +106,14 @@ fn bitmap_errors() {
         "cannot read bitmap",
     );
     expect(
-        "bitmap_blend.xml",
+        "bitmap_blend_checkerboard.xml",
         &wrap(&format!(
-            "<bsdf type=\"blendbsdf\">\n<float name=\"weight\" value=\"0.5\"/>\n<bsdf type=\"conductor\"/>\n{}\n</bsdf>",
+            "<bsdf type=\"blendbsdf\">\n<texture type=\"checkerboard\" name=\"weight\"/>\n<bsdf type=\"conductor\"/>\n{}\n</bsdf>",
             diffuse(with_bitmap(file))
         )),
         4,
         "<bsdf type=\"blendbsdf\">",
-        "not supported",
+        "beside a checkerboard is not supported",
     );
     expect(
         "blend_weight_twice.xml",
@@ -133,7 +133,7 @@ fn bitmap_errors() {
         )),
         5,
         "<bsdf type=\"blendbsdf\">",
-        "twosided around a blendbsdf with a bitmap weight",
+        "twosided around a blendbsdf or mask with a bitmap",
     );
     expect(
         "bitmap_one_side.xml",

@@ -403,7 +403,12 @@ fn blend_weight_textures() {
     };
     assert!((weight_of(even) - 0.2).abs() < 1e-6);
     assert!((weight_of(odd) - 0.6).abs() < 1e-6);
-    let BsdfDesc::BlendWeightBitmap { base, texture } = &desc.bsdfs[1] else {
+    let BsdfDesc::TexturedBlend {
+        base,
+        weight: Some(texture),
+        reflectances: [None, None],
+    } = &desc.bsdfs[1]
+    else {
         panic!("not a bitmap weight: {:?}", desc.bsdfs[1]);
     };
     assert_eq!(weight_of(base), texture.mean_luminance());
@@ -445,7 +450,12 @@ fn mask_is_a_blend_with_null() {
     let (first, second, weight) = blend(&desc.bsdfs[1]);
     assert_eq!((first, weight), (null.clone(), 0.25));
     assert!(matches!(second, BsdfDesc::TwoSided { .. }));
-    let BsdfDesc::BlendWeightBitmap { base, texture } = &desc.bsdfs[2] else {
+    let BsdfDesc::TexturedBlend {
+        base,
+        weight: Some(texture),
+        reflectances: [None, None],
+    } = &desc.bsdfs[2]
+    else {
         panic!("not a bitmap opacity: {:?}", desc.bsdfs[2]);
     };
     let (first, second, weight) = blend(base);

@@ -146,14 +146,17 @@ pub enum BsdfDesc {
         /// The texture.
         texture: Arc<BitmapTexture>,
     },
-    /// A `blendbsdf` whose weight is a `bitmap` texture: `base`, a blend with the texture's mean
-    /// luminance as its weight, and at each hit the texture's luminance (clamped to [0, 1]) in its
-    /// place.
-    BlendWeightBitmap {
-        /// The blend with the texture's mean luminance as its weight.
+    /// A `blendbsdf` (or `mask`) with `bitmap` textures: its weight a bitmap's luminance
+    /// (clamped to [0, 1]), either BSDF's diffuse albedo a bitmap, or both. `base` is the blend
+    /// with each texture's mean in its place (the weight's mean luminance, a BSDF's albedo as
+    /// [`BsdfDesc::DiffuseBitmap`] has it), and at each hit the textures' values take their places.
+    TexturedBlend {
+        /// The blend with the textures' means.
         base: Box<BsdfDesc>,
-        /// The texture.
-        texture: Arc<BitmapTexture>,
+        /// The texture of the weight, if any.
+        weight: Option<Arc<BitmapTexture>>,
+        /// The textures of the first and the second BSDF's diffuse albedos, if any.
+        reflectances: [Option<Arc<BitmapTexture>>; 2],
     },
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.

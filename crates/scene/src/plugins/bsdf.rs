@@ -250,9 +250,9 @@ impl<'a> BsdfTable<'a> {
         let mut sides = Vec::new();
         for (child, bsdf) in self.nested(node, None)? {
             match bsdf {
-                BsdfDesc::BlendWeightBitmap { .. } => {
+                BsdfDesc::TexturedBlend { .. } => {
                     return Err(child_loc(child).error(
-                        "twosided around a blendbsdf with a bitmap weight is not supported",
+                        "twosided around a blendbsdf or mask with a bitmap is not supported",
                     ));
                 }
                 BsdfDesc::TwoSided { .. }
@@ -490,7 +490,7 @@ fn bsdf_has_transmission(desc: &BsdfDesc) -> bool {
         BsdfDesc::Checkerboard { even, odd, .. } => {
             bsdf_has_transmission(even) || bsdf_has_transmission(odd)
         }
-        BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::BlendWeightBitmap { base, .. } => {
+        BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::TexturedBlend { base, .. } => {
             bsdf_has_transmission(base)
         }
         _ => false,
@@ -524,60 +524,77 @@ fn textured(
 }
 
 /// `first` and `second` blended by `weight`, or by `weight_texture` when there is one
-/// ([`BsdfTable::blend`]); a checkerboard in either is hoisted above the blend. Nested textured
-/// BSDFs are refused, as are checkerboards beside a textured weight.
+/// ([`BsdfTable::blend`]); a checkerboard in either is hoisted above the blend, a bitmap weight
+/// or a BSDF with a bitmap albedo makes a [`BsdfDesc::TexturedBlend`]. Refused: a textured blend
+/// inside, checkerboards beside a textured weight, and bitmap albedos beside a checkerboard.
 fn blended(
     node: &ObjectNode,
-    [first, second]: [BsdfDesc; 2],
+    parts: [BsdfDesc; 2],
     weight_texture: Option<TextureDesc>,
     weight: f32,
 ) -> Result<BsdfDesc> {
-    if [&first, &second].iter().any(|b| {
-        matches!(
-            b,
-            BsdfDesc::DiffuseBitmap { .. } | BsdfDesc::BlendWeightBitmap { .. }
-        )
-    }) {
-        return Err(node.loc.error(format!(
-            "a {} of a BSDF with a bitmap texture is not supported",
-            node.plugin
-        )));
+    let refuse = |what: &str| {
+        Err(node
+            .loc
+            .error(format!("a {} {what} is not supported", node.plugin)))
+    };
+    if parts
+        .iter()
+        .any(|b| matches!(b, BsdfDesc::TexturedBlend { .. }))
+    {
+        return refuse("of a blendbsdf or mask with a bitmap");
     }
+    let has_checkerboard = parts
+        .iter()
+        .any(|b| matches!(b, BsdfDesc::Checkerboard { .. }));
+    // A BSDF with a bitmap albedo takes part as its base, the bitmap kept aside.
+    let reflectances = parts.each_ref().map(|b| match b {
+        BsdfDesc::DiffuseBitmap { texture, .. } => Some(texture.clone()),
+        _ => None,
+    });
+    let [first, second] = parts.map(|b| match b {
+        BsdfDesc::DiffuseBitmap { base, .. } => *base,
+        other => other,
+    });
     let blend = |[first, second]: [BsdfDesc; 2], weight: f32| BsdfDesc::Blend {
         first: Box::new(first),
         second: Box::new(second),
         weight: weight.clamp(0.0, 1.0),
     };
-    let Some(texture) = weight_texture else {
-        return hoist_checkerboard(node, [first, second], |parts| blend(parts, weight));
-    };
-    if [&first, &second]
-        .iter()
-        .any(|b| matches!(b, BsdfDesc::Checkerboard { .. }))
+    let has_bitmap_albedo = reflectances.iter().any(Option::is_some);
+    if has_bitmap_albedo
+        && (has_checkerboard || matches!(weight_texture, Some(TextureDesc::Checkerboard { .. })))
     {
-        return Err(node.loc.error(format!(
-            "a {} with a textured weight of a BSDF with a checkerboard is not supported",
-            node.plugin
-        )));
+        return refuse("of a BSDF with a bitmap beside a checkerboard");
     }
-    Ok(match texture {
-        TextureDesc::Checkerboard {
+    match weight_texture {
+        None if has_bitmap_albedo => Ok(BsdfDesc::TexturedBlend {
+            base: Box::new(blend([first, second], weight)),
+            weight: None,
+            reflectances,
+        }),
+        None => hoist_checkerboard(node, [first, second], |parts| blend(parts, weight)),
+        Some(_) if has_checkerboard => {
+            refuse("with a textured weight of a BSDF with a checkerboard")
+        }
+        Some(TextureDesc::Checkerboard {
             color0,
             color1,
             to_uv,
-        } => {
+        }) => {
             let mean = |c: glam::Vec3| c.element_sum() / 3.0;
-            BsdfDesc::Checkerboard {
+            Ok(BsdfDesc::Checkerboard {
                 even: Box::new(blend([first.clone(), second.clone()], mean(color1))),
                 odd: Box::new(blend([first, second], mean(color0))),
                 to_uv,
-            }
+            })
         }
-        TextureDesc::Bitmap(texture) => BsdfDesc::BlendWeightBitmap {
+        Some(TextureDesc::Bitmap(texture)) => Ok(BsdfDesc::TexturedBlend {
             base: Box::new(blend([first, second], texture.mean_luminance())),
-            texture,
-        },
-    })
+            weight: Some(texture),
+            reflectances,
+        }),
+    }
 }
 
 /// Mitsuba's `null`, an invisible surface: light passes straight through it, a delta
