@@ -756,7 +756,16 @@ fn references_and_parameters() {
         ),
         5,
         "<bsdf type=\"blendbsdf\">",
-        "includes a dielectric",
+        "this blend or mask transmits",
+    );
+    expect(
+        "twosided_mask.xml",
+        &wrap(
+            "<bsdf type=\"twosided\">\n<bsdf type=\"mask\">\n<bsdf type=\"diffuse\"/>\n</bsdf>\n</bsdf>",
+        ),
+        5,
+        "<bsdf type=\"mask\">",
+        "this blend or mask transmits",
     );
     expect(
         "cylinder_radius.xml",

@@ -265,7 +265,7 @@ impl<'a> BsdfTable<'a> {
                 }
                 BsdfDesc::Blend { .. } if bsdf_has_transmission(&bsdf) => {
                     return Err(child_loc(child).error(
-                        "twosided can only wrap reflective BSDFs; this blend includes a dielectric",
+                        "twosided can only wrap reflective BSDFs, as in Mitsuba; this blend or mask transmits (a dielectric, thindielectric, null or mask in it)",
                     ));
                 }
                 bsdf => sides.push(bsdf),
