@@ -78,6 +78,8 @@ fn interpret_scene(path: &Path, root: &ObjectNode) -> Result<SceneDesc> {
                 shapes.extend(groups.instance(object, &mut bsdfs)?);
             }
             "shape" => shapes.push(shape(object, &mut bsdfs)?),
+            // An area emitter with an id emits from the shapes that reference it.
+            "emitter" if object.plugin == "area" && object.id.is_some() => {}
             "emitter" => emitters.push(scene_emitter(object)?),
             "film" | "sampler" => {
                 return Err(object.loc.error(format!(

@@ -1276,3 +1276,100 @@ fn serialized_meshes() {
     assert_eq!(err.line, 4, "{err}");
     assert!(err.message.contains("out of range"), "{err}");
 }
+
+/// `<path value="...">` adds a folder (relative to the scene file) where `filename`s and
+/// includes are looked for first, as Mitsuba's file resolver does; a folder that does not exist
+/// is an error naming the element.
+#[test]
+fn path_elements_add_search_folders() {
+    std::fs::create_dir_all(write_scene("assets", "").with_file_name("assets-dir")).unwrap();
+    let assets = write_scene(
+        "assets-dir/part.xml",
+        "<bsdf type=\"conductor\" id=\"metal\"/>",
+    );
+    let box_obj = data_dir().join("meshes/box.obj");
+    std::fs::copy(box_obj, assets.with_file_name("crate.obj")).unwrap();
+    let desc = ok(
+        "search_path.xml",
+        &wrap(
+            "<path value=\"assets-dir\"/>
+<include filename=\"part.xml\"/>
+<shape type=\"obj\"><string name=\"filename\" value=\"crate.obj\"/><ref id=\"metal\"/></shape>",
+        ),
+    );
+    assert_eq!(only_mesh(&desc).triangles.len(), 12);
+    assert!(matches!(desc.bsdfs[0], BsdfDesc::Conductor { .. }));
+    let err = load(
+        "search_path_missing.xml",
+        &wrap("<path value=\"no-such-dir\"/>"),
+    )
+    .unwrap_err();
+    assert_eq!(err.line, 4, "{err}");
+    assert!(
+        err.message.contains("folder \"no-such-dir\" not found"),
+        "{err}"
+    );
+}
+
+/// A file named in an included file that is not beside it is looked for beside the scene, as
+/// Mitsuba's resolver (which knows the scene's folder, not the included file's) finds it.
+#[test]
+fn included_files_find_files_beside_the_scene() {
+    std::fs::create_dir_all(write_scene("x", "").with_file_name("fragments")).unwrap();
+    write_scene(
+        "fragments/mesh.xml",
+        "<shape type=\"obj\"><string name=\"filename\" value=\"meshes/box.obj\"/></shape>",
+    );
+    let desc = ok(
+        "include_scene_dir.xml",
+        &wrap("<include filename=\"fragments/mesh.xml\"/>"),
+    );
+    assert_eq!(only_mesh(&desc).triangles.len(), 12);
+}
+
+/// Mitsuba's `moment` integrator renders its nested integrator's image (and adds moments as
+/// extra channels, which Strata does not write); it needs exactly one nested integrator.
+#[test]
+fn moment_integrator_reads_its_nested_integrator() {
+    let text = wrap("").replace(
+        "<integrator type=\"path\"/>",
+        "<integrator type=\"moment\"><integrator type=\"direct\"><integer name=\"emitter_samples\" value=\"3\"/></integrator></integrator>",
+    );
+    let desc = ok("moment.xml", &text);
+    assert!(matches!(
+        desc.integrator.kind,
+        IntegratorKind::Direct {
+            emitter_samples: 3,
+            ..
+        }
+    ));
+    let empty = wrap("").replace(
+        "<integrator type=\"path\"/>",
+        "<integrator type=\"moment\"/>",
+    );
+    let err = load("moment_empty.xml", &empty).unwrap_err();
+    assert!(
+        err.message.contains("exactly one nested <integrator>"),
+        "{err}"
+    );
+}
+
+/// An area emitter declared at the top level with an id emits from the shape that references
+/// it, as in Mitsuba's documentation scenes.
+#[test]
+fn area_emitters_referenced_by_id() {
+    let desc = ok(
+        "emitter_ref.xml",
+        &wrap(
+            "<emitter type=\"area\" id=\"glow\"><rgb name=\"radiance\" value=\"2, 3, 4\"/></emitter>
+<shape type=\"rectangle\"><ref id=\"glow\"/><bsdf type=\"diffuse\"/></shape>",
+        ),
+    );
+    assert_eq!(desc.shapes.len(), 1);
+    let emitter = desc.shapes[0].emitter.as_ref().expect("the shape emits");
+    assert!(
+        format!("{emitter:?}").contains("2.0, 3.0, 4.0"),
+        "{emitter:?}"
+    );
+    assert!(desc.emitters.is_empty());
+}

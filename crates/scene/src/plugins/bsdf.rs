@@ -75,6 +75,15 @@ impl<'a> BsdfTable<'a> {
         self.add_with_id(node)
     }
 
+    /// The object a `<ref>` names when it is an `<emitter>` (an area emitter declared at the top
+    /// level and referenced from the shape that emits), `None` when it names something else.
+    pub fn referenced_emitter(&self, reference: &RefNode) -> Option<&'a ObjectNode> {
+        self.by_id
+            .get(reference.id.as_str())
+            .copied()
+            .filter(|node| node.tag == "emitter")
+    }
+
     /// The index of Mitsuba's default BSDF (diffuse, reflectance 0.5), added on first use.
     pub fn default_bsdf(&mut self) -> usize {
         *self.default.get_or_insert_with(|| {

@@ -8,7 +8,7 @@ use crate::desc::{IntegratorDesc, IntegratorKind};
 use crate::error::Result;
 use crate::limits::MAX_DIRECT_SAMPLES;
 use crate::params::Params;
-use crate::xml::tree::ObjectNode;
+use crate::xml::tree::{Child, ObjectNode};
 
 /// Mitsuba's default Russian roulette start depth.
 const DEFAULT_RR_DEPTH: i64 = 5;
@@ -17,8 +17,19 @@ const DEFAULT_RR_DEPTH: i64 = 5;
 /// others default to -1, unbounded.
 const PRB_DEFAULT_MAX_DEPTH: i64 = 6;
 
-/// Interprets an `<integrator>` element.
+/// Interprets an `<integrator>` element. Mitsuba's `moment` (which adds the second moment of
+/// its nested integrator's samples as extra image channels, for variance estimates) renders its
+/// nested integrator's image, which is what Strata renders for it.
 pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
+    if node.plugin == "moment" {
+        Params::new(node).finish()?;
+        return match node.children.as_slice() {
+            [Child::Object(nested)] if nested.tag == "integrator" => integrator(nested),
+            _ => Err(node
+                .loc
+                .error("moment needs exactly one nested <integrator>")),
+        };
+    }
     no_children(node)?;
     let mut params = Params::new(node);
     let desc = match node.plugin.as_str() {
@@ -54,6 +65,7 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
                     "prb",
                     "prbvolpath",
                     "direct",
+                    "moment",
                 ],
             ));
         }

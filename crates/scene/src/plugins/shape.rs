@@ -36,16 +36,21 @@ pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Resu
     let mut bsdf = None;
     let mut emitter = None;
     for child in &node.children {
-        let allowed = "one <bsdf> or <ref id=\"...\"/> to a bsdf, and one <emitter type=\"area\">";
-        match child {
-            Child::Object(object) if object.tag == "bsdf" && bsdf.is_none() => {
+        let allowed = "one <bsdf> or <ref id=\"...\"/> to a bsdf, and one <emitter type=\"area\"> or <ref> to one";
+        // A reference names a BSDF, or an area emitter declared at the top level.
+        let (object, reference) = match child {
+            Child::Object(object) => (Some(object), None),
+            Child::Ref(reference) => (bsdfs.referenced_emitter(reference), Some(reference)),
+        };
+        match (object, reference) {
+            (Some(object), _) if object.tag == "emitter" && emitter.is_none() => {
+                emitter = Some(area_emitter(object)?);
+            }
+            (Some(object), None) if object.tag == "bsdf" && bsdf.is_none() => {
                 bsdf = Some(bsdfs.add(object)?);
             }
-            Child::Ref(reference) if bsdf.is_none() => {
+            (None, Some(reference)) if bsdf.is_none() => {
                 bsdf = Some(bsdfs.reference(reference)?);
-            }
-            Child::Object(object) if object.tag == "emitter" && emitter.is_none() => {
-                emitter = Some(area_emitter(object)?);
             }
             _ => return Err(unexpected_child(node, child, allowed)),
         }

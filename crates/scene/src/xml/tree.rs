@@ -49,7 +49,7 @@ const PROPERTY_TAGS: [&str; 9] = [
 ];
 
 /// Other tags understood inside an object.
-const OTHER_TAGS: [&str; 3] = ["ref", "default", "include"];
+const OTHER_TAGS: [&str; 4] = ["ref", "default", "include", "path"];
 
 /// How deeply `<include>` may nest before it is taken for a cycle.
 const MAX_INCLUDE_DEPTH: usize = 16;
@@ -178,6 +178,7 @@ fn parse_scene(
             })
             .collect(),
         ids: HashMap::new(),
+        search_dirs: Vec::new(),
     };
     builder.sort_params();
     let file_loc = Loc::file_only(path);
@@ -195,10 +196,12 @@ fn parse_scene(
             overrides[i].1
         )));
     }
-    let root = match text {
+    let mut root = match text {
         Some(text) => builder.parse_text(path, text.to_vec(), 0)?,
         None => builder.parse_file(path, 0, &file_loc)?,
     };
+    let scene_dir = path.parent().unwrap_or(Path::new(""));
+    resolve_filenames(&mut root, &builder.search_dirs, scene_dir);
     if root.tag != "scene" {
         return Err(root.loc.error(format!(
             "the root element must be <scene>, not <{}>",
@@ -219,6 +222,49 @@ struct Builder {
     params: Vec<Param>,
     /// Where each `id` was first declared.
     ids: HashMap<String, Loc>,
+    /// The folders `<path>` elements named, absolute, in document order.
+    search_dirs: Vec<PathBuf>,
+}
+
+/// Resolves every relative `filename` property below `node` as Mitsuba's file resolver does
+/// once `<path>` elements have added `search_dirs`: the first folder, latest added first, that
+/// holds the file; else the folder of the file the property is in (where the plugins look, and
+/// the scene's folder for the scene file itself); else the scene's folder, where Mitsuba looks
+/// for the files an included file names. A file found nowhere is left for the plugin to report.
+fn resolve_filenames(node: &mut ObjectNode, search_dirs: &[PathBuf], scene_dir: &Path) {
+    for prop in &mut node.props {
+        let (true, Value::String(name)) = (prop.name == "filename", &mut prop.value) else {
+            continue;
+        };
+        let relative = Path::new(name.as_str());
+        let own_dir = prop.loc.file.parent().unwrap_or(Path::new(""));
+        let found = search(search_dirs, relative).or_else(|| {
+            (!own_dir.join(relative).exists())
+                .then(|| scene_dir.join(relative))
+                .filter(|p| p.exists())
+                .and_then(|p| std::fs::canonicalize(p).ok())
+        });
+        if let Some(found) = found {
+            *name = found.to_string_lossy().into_owned();
+        }
+    }
+    for child in &mut node.children {
+        if let Child::Object(object) = child {
+            resolve_filenames(object, search_dirs, scene_dir);
+        }
+    }
+}
+
+/// The first of `search_dirs`, latest first, that holds the relative path `name`, joined to it.
+fn search(search_dirs: &[PathBuf], name: &Path) -> Option<PathBuf> {
+    if name.is_absolute() {
+        return None;
+    }
+    search_dirs
+        .iter()
+        .rev()
+        .map(|dir| dir.join(name))
+        .find(|candidate| candidate.exists())
 }
 
 impl Builder {
@@ -461,7 +507,12 @@ impl Builder {
                         "includes nested deeper than {MAX_INCLUDE_DEPTH} levels (an include cycle?)"
                     )));
                 }
-                let path = ctx.dir.join(attrs.get("filename").unwrap_or_default());
+                // The including file's folder first, then `<path>` folders, as Mitsuba's.
+                let filename = Path::new(attrs.get("filename").unwrap_or_default());
+                let path = Some(ctx.dir.join(filename))
+                    .filter(|p| p.is_file())
+                    .or_else(|| search(&self.search_dirs, filename))
+                    .unwrap_or_else(|| ctx.dir.join(filename));
                 if !path.is_file() {
                     return Err(
                         loc.error(format!("included file \"{}\" not found", path.display()))
@@ -474,6 +525,19 @@ impl Builder {
                 } else {
                     parent.children.push(Child::Object(included));
                 }
+                Ok(())
+            }
+            "path" => {
+                attrs.check(&["value"], &["value"], &loc)?;
+                let value = Path::new(attrs.get("value").unwrap_or_default());
+                let dir = Some(ctx.dir.join(value))
+                    .filter(|d| d.is_dir())
+                    .or_else(|| search(&self.search_dirs, value).filter(|d| d.is_dir()))
+                    .and_then(|d| std::fs::canonicalize(d).ok())
+                    .ok_or_else(|| {
+                        loc.error(format!("folder \"{}\" not found", value.display()))
+                    })?;
+                self.search_dirs.push(dir);
                 Ok(())
             }
             _ if TRANSFORM_OPS.contains(&tag) => {
