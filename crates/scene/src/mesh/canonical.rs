@@ -63,30 +63,50 @@ const CUBE_FACES: [[Vec3; 3]; 6] = [
 /// `disk`: the unit disk in the z = 0 plane facing +z, as a fan of [`DISK_SEGMENTS`] triangles.
 ///
 /// The rim radius is enlarged slightly so that the polygon's area equals π, the disk's area:
-/// an emitting disk then has exactly Mitsuba's power. No uv coordinates (Mitsuba's disk uses polar
-/// ones, which a fan cannot interpolate).
+/// an emitting disk then has exactly Mitsuba's power. Surface coordinates are Mitsuba's polar
+/// ones, u = r and v = atan2(y, x) / 2π in (−½, ½], interpolated over each triangle: the rim
+/// vertex at φ = π appears twice (v = ½ and −½) and each triangle has its own centre vertex
+/// (u = 0, v of the triangle's middle angle). Interpolation strays from the exact coordinates
+/// by under 3e-4 in u, and in v by under 1/256 only near the centre, where v turns fastest.
 pub(crate) fn disk() -> MeshDesc {
     let n = f64::from(DISK_SEGMENTS);
     let step = TAU / n;
     let radius = (TAU / (n * step.sin())).sqrt();
-    let mut positions = vec![Vec3::ZERO];
-    positions.extend((0..DISK_SEGMENTS).map(|i| {
+    let rim = |i: u32| {
         let phi = step * f64::from(i);
         Vec3::new(
             (radius * phi.cos()) as f32,
             (radius * phi.sin()) as f32,
             0.0,
         )
-    }));
-    let triangles = (0..DISK_SEGMENTS)
-        .map(|i| [0, 1 + i, 1 + (i + 1) % DISK_SEGMENTS])
-        .collect();
-    MeshDesc {
-        positions,
-        normals: None,
-        uvs: None,
-        triangles,
+    };
+    // v of rim vertex i, on the side of the seam at φ = π that the triangle starting at
+    // vertex `first` lies on.
+    let v_of = |i: u32, first: u32| {
+        let turns = f64::from(i % DISK_SEGMENTS) / n;
+        let past_seam = if first >= DISK_SEGMENTS / 2 {
+            turns >= 0.5
+        } else {
+            turns > 0.5
+        };
+        (if past_seam { turns - 1.0 } else { turns }) as f32
+    };
+    let mut mesh = MeshDesc::default();
+    let mut uvs = Vec::new();
+    for i in 0..DISK_SEGMENTS {
+        let base = mesh.positions.len() as u32;
+        let (v0, v1) = (v_of(i, i), v_of(i + 1, i));
+        mesh.positions
+            .extend([Vec3::ZERO, rim(i), rim((i + 1) % DISK_SEGMENTS)]);
+        uvs.extend([
+            Vec2::new(0.0, 0.5 * (v0 + v1)),
+            Vec2::new(1.0, v0),
+            Vec2::new(1.0, v1),
+        ]);
+        mesh.triangles.push([base, base + 1, base + 2]);
     }
+    mesh.uvs = Some(uvs);
+    mesh
 }
 
 /// `cylinder`: the unit cylinder around the z axis from z = 0 to z = 1, without caps, normals
@@ -237,5 +257,26 @@ mod tests {
             .map(|p| p.length())
             .fold(0.0, f32::max);
         assert!((max_r - 1.0).abs() < 1e-3);
+    }
+
+    /// The interpolated surface coordinates match Mitsuba's (r, atan2(y, x) / 2π) on both sides
+    /// of the seam at φ = π and away from the centre.
+    #[test]
+    fn disk_uv_is_polar_as_mitsuba_has_it() {
+        let mesh = disk();
+        let uvs = mesh.uvs.as_ref().unwrap();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            let [a, b, c] = tri.map(|i| i as usize);
+            for (b1, b2) in [(0.45, 0.45), (0.3, 0.5), (0.7, 0.1)] {
+                let b0 = 1.0 - b1 - b2;
+                let p = mesh.positions[a] * b0 + mesh.positions[b] * b1 + mesh.positions[c] * b2;
+                let uv = uvs[a] * b0 + uvs[b] * b1 + uvs[c] * b2;
+                let exact = Vec2::new(p.truncate().length(), p.y.atan2(p.x) / TAU as f32);
+                assert!(
+                    (uv - exact).abs().max_element() < 1e-3,
+                    "triangle {t}: {uv} against {exact}"
+                );
+            }
+        }
     }
 }
