@@ -321,38 +321,22 @@ mod tests {
 
     #[test]
     fn bad_files_are_errors() {
+        let fails_with = |bytes: &[u8], expected: &str| {
+            let err = parse_serialized(bytes, 0).unwrap_err();
+            assert!(err.contains(expected), "{err} (expected {expected:?})");
+        };
         let good = file(4, &[stream(0x1000, "", &TRIANGLE, &[], &[[0, 1, 2]])]);
         let mut wrong_id = good.clone();
         wrong_id[0] = 0;
-        assert!(
-            parse_serialized(&wrong_id, 0)
-                .unwrap_err()
-                .contains("format identifier")
-        );
+        fails_with(&wrong_id, "format identifier");
         let mut wrong_version = good.clone();
         wrong_version[2] = 9;
-        assert!(
-            parse_serialized(&wrong_version, 0)
-                .unwrap_err()
-                .contains("version 9")
-        );
-        assert!(
-            parse_serialized(&good[..good.len() - 20], 0)
-                .unwrap_err()
-                .contains("corrupt")
-        );
+        fails_with(&wrong_version, "version 9");
+        fails_with(&good[..good.len() - 20], "corrupt");
         let past_end = file(4, &[stream(0x1000, "", &TRIANGLE, &[], &[[0, 1, 3]])]);
-        assert!(
-            parse_serialized(&past_end, 0)
-                .unwrap_err()
-                .contains("indexes past")
-        );
+        fails_with(&past_end, "indexes past");
         let mut huge = stream(0x1000, "", &TRIANGLE, &[], &[[0, 1, 2]]);
         huge[5..13].copy_from_slice(&u64::MAX.to_le_bytes());
-        assert!(
-            parse_serialized(&file(4, &[huge]), 0)
-                .unwrap_err()
-                .contains("do not fit")
-        );
+        fails_with(&file(4, &[huge]), "do not fit");
     }
 }
