@@ -73,6 +73,9 @@ pub struct World {
     light_weights: Vec<f32>,
     environment: Option<u32>,
     delta_lights: Vec<u32>,
+    /// Per material, whether it is anisotropic ([`Bsdf::is_anisotropic`]); empty when none is,
+    /// so that isotropic scenes never build a frame from the surface's tangent.
+    anisotropic: Vec<bool>,
 }
 
 /// A ray's closest surface hit with what is needed to shade it.
@@ -147,7 +150,13 @@ impl World {
         let delta_lights = (0..lights.len() as u32)
             .filter(|&i| lights[i as usize].is_delta())
             .collect();
+        let anisotropic = if materials.iter().any(Bsdf::is_anisotropic) {
+            materials.iter().map(Bsdf::is_anisotropic).collect()
+        } else {
+            Vec::new()
+        };
         Ok(Self {
+            anisotropic,
             accel,
             materials,
             textures: Vec::new(),
@@ -360,8 +369,12 @@ impl World {
     #[inline(always)]
     fn surface<'s>(&'s self, hit: Hit, dir: Vec3, slot: &'s mut BsdfSlot) -> SurfaceHit<'s> {
         let shape = hit.shape as usize;
-        let frame = Frame::from_normal(hit.ns);
         let material = self.shape_material[shape];
+        let frame = if self.anisotropic.is_empty() || !self.anisotropic[material as usize] {
+            Frame::from_normal(hit.ns)
+        } else {
+            Frame::from_normal_and_tangent(hit.ns, self.accel.dp_du(&hit))
+        };
         let (bsdf, frame) = if self.textures.is_empty() {
             self.facing(material, frame, dir)
         } else {

@@ -132,6 +132,25 @@ impl Bsdf {
         }
     }
 
+    /// Whether the BSDF (or a BSDF it holds) has anisotropic roughness, so that it depends on
+    /// how the shading frame is turned about the normal: the frame must then follow the
+    /// surface's parameterisation (its first tangent along ∂p/∂u, as Mitsuba's), which the
+    /// isotropic BSDFs do not need.
+    pub fn is_anisotropic(&self) -> bool {
+        match self {
+            Self::RoughConductor(b) => b.distribution().is_anisotropic(),
+            Self::RoughDielectric(b) => b.distribution().is_anisotropic(),
+            Self::TwoSided(b) => b.front().is_anisotropic() || b.back().is_anisotropic(),
+            Self::Blend(b) => b.first().is_anisotropic() || b.second().is_anisotropic(),
+            Self::Diffuse(_)
+            | Self::Conductor(_)
+            | Self::Dielectric(_)
+            | Self::ThinDielectric(_)
+            | Self::Plastic(_)
+            | Self::RoughPlastic(_) => false,
+        }
+    }
+
     /// For choosing among lights by resampling: a cheap positive estimate of f · cos θi towards
     /// `wi`, sr⁻¹ (a rough conductor's [`RoughConductor::lobe_weight`]), or `None` for BSDFs
     /// whose reflection varies little with the direction (diffuse) or has no density (delta

@@ -28,12 +28,15 @@ pub enum MicrofacetKind {
     Ggx,
 }
 
-/// An isotropic microfacet distribution of kind `kind` with roughness `alpha` (Mitsuba's `alpha`:
-/// the RMS slope for Beckmann, the width parameter for GGX).
+/// A microfacet distribution of kind `kind` with roughness `alpha_u` along the shading frame's
+/// first tangent (local x) and `alpha_v` along its second (local y): Mitsuba's `alpha_u` and
+/// `alpha_v`, the RMS slopes for Beckmann, the width parameters for GGX. Isotropic when the two
+/// are equal (Mitsuba's `alpha`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Microfacet {
     kind: MicrofacetKind,
-    alpha: f32,
+    alpha_u: f32,
+    alpha_v: f32,
 }
 
 /// The largest `f32` below 1, keeping arguments of `erfinv` finite.
@@ -49,12 +52,26 @@ impl Microfacet {
     /// A distribution of `kind` with roughness `alpha`, clamped below to [`Self::MIN_ALPHA`] like
     /// Mitsuba's; an error if `alpha` is NaN or infinite.
     pub fn new(kind: MicrofacetKind, alpha: f32) -> Result<Self, MaterialError> {
-        if !alpha.is_finite() {
-            return Err(MaterialError::InvalidRoughness { value: alpha });
+        Self::anisotropic(kind, alpha, alpha)
+    }
+
+    /// An anisotropic distribution of `kind` with roughness `alpha_u` along the first tangent
+    /// and `alpha_v` along the second, each clamped below to [`Self::MIN_ALPHA`] like Mitsuba's;
+    /// an error if either is NaN or infinite.
+    pub fn anisotropic(
+        kind: MicrofacetKind,
+        alpha_u: f32,
+        alpha_v: f32,
+    ) -> Result<Self, MaterialError> {
+        for value in [alpha_u, alpha_v] {
+            if !value.is_finite() {
+                return Err(MaterialError::InvalidRoughness { value });
+            }
         }
         Ok(Self {
             kind,
-            alpha: alpha.max(Self::MIN_ALPHA),
+            alpha_u: alpha_u.max(Self::MIN_ALPHA),
+            alpha_v: alpha_v.max(Self::MIN_ALPHA),
         })
     }
 
@@ -63,9 +80,15 @@ impl Microfacet {
         self.kind
     }
 
-    /// The roughness after clamping (dimensionless).
-    pub fn alpha(&self) -> f32 {
-        self.alpha
+    /// The roughness along the first and second tangent after clamping (dimensionless).
+    pub fn alpha(&self) -> Vec2 {
+        Vec2::new(self.alpha_u, self.alpha_v)
+    }
+
+    /// Whether the roughness differs between the two tangent directions, so that the
+    /// distribution depends on how the shading frame is turned about its normal.
+    pub fn is_anisotropic(&self) -> bool {
+        self.alpha_u != self.alpha_v
     }
 
     /// D(m): density of microfacet normals per steradian at the unit normal `m`, zero for
@@ -73,8 +96,8 @@ impl Microfacet {
     pub fn d(&self, m: Vec3) -> f32 {
         let cos_theta = m.z;
         let cos2 = cos_theta * cos_theta;
-        let alpha2 = self.alpha * self.alpha;
-        let (sx, sy) = (m.x / self.alpha, m.y / self.alpha);
+        let alpha2 = self.alpha_u * self.alpha_v;
+        let (sx, sy) = (m.x / self.alpha_u, m.y / self.alpha_v);
         let result = match self.kind {
             MicrofacetKind::Beckmann => {
                 (-(sx * sx + sy * sy) / cos2).exp() / (PI * alpha2 * cos2 * cos2)
@@ -100,7 +123,7 @@ impl Microfacet {
         if v.dot(m) * v.z <= 0.0 {
             return 0.0;
         }
-        let xy_alpha2 = self.alpha * self.alpha * (v.x * v.x + v.y * v.y);
+        let xy_alpha2 = self.projected_alpha2(v);
         if xy_alpha2 == 0.0 {
             return 1.0;
         }
@@ -129,7 +152,7 @@ impl Microfacet {
                 if v.dot(m) * v.z <= 0.0 {
                     return 0.0;
                 }
-                let xy_alpha2 = self.alpha * self.alpha * (v.x * v.x + v.y * v.y);
+                let xy_alpha2 = self.projected_alpha2(v);
                 if xy_alpha2 == 0.0 {
                     return 1.0;
                 }
@@ -178,10 +201,19 @@ impl Microfacet {
         (pdf > 0.0 && pdf.is_finite()).then_some((m, pdf))
     }
 
+    /// (α · v_xy)²: the squared length of `v`'s tangential part with each axis scaled by its
+    /// roughness, which over v_z² is the squared tangent of θ the Smith terms need (the
+    /// roughness in `v`'s azimuth, times its tangent).
+    #[inline]
+    fn projected_alpha2(&self, v: Vec3) -> f32 {
+        let (x, y) = (self.alpha_u * v.x, self.alpha_v * v.y);
+        x * x + y * y
+    }
+
     /// Heitz 2018: sample the projected area of a hemisphere seen from the stretched direction.
     fn sample_ggx_visible(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
-        let a = self.alpha;
-        let vh = Vec3::new(a * wo.x, a * wo.y, wo.z).normalize_or_zero();
+        let (au, av) = (self.alpha_u, self.alpha_v);
+        let vh = Vec3::new(au * wo.x, av * wo.y, wo.z).normalize_or_zero();
         let len2 = vh.x * vh.x + vh.y * vh.y;
         let t1 = if len2 > 0.0 {
             Vec3::new(-vh.y, vh.x, 0.0) / len2.sqrt()
@@ -194,14 +226,14 @@ impl Microfacet {
         let p_y = (1.0 - s) * (1.0 - p.x * p.x).max(0.0).sqrt() + s * p.y;
         let n_z = (1.0 - p.x * p.x - p_y * p_y).max(0.0).sqrt();
         let nh = p.x * t1 + p_y * t2 + n_z * vh;
-        let m = Vec3::new(a * nh.x, a * nh.y, nh.z.max(0.0)).normalize_or_zero();
+        let m = Vec3::new(au * nh.x, av * nh.y, nh.z.max(0.0)).normalize_or_zero();
         (m != Vec3::ZERO).then_some(m)
     }
 
     /// Mitsuba's Beckmann routine: stretch `wo`, sample unit-roughness slopes, rotate, unstretch.
     fn sample_beckmann_visible(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
-        let a = self.alpha;
-        let wo_p = Vec3::new(a * wo.x, a * wo.y, wo.z).normalize_or_zero();
+        let (au, av) = (self.alpha_u, self.alpha_v);
+        let wo_p = Vec3::new(au * wo.x, av * wo.y, wo.z).normalize_or_zero();
         let sin2 = wo_p.x * wo_p.x + wo_p.y * wo_p.y;
         let (sin_phi, cos_phi) = if sin2 <= 4.0 * f32::EPSILON {
             (0.0, 1.0)
@@ -213,8 +245,8 @@ impl Microfacet {
             )
         };
         let slope = beckmann_visible_slopes_unit(wo_p.z, u);
-        let sx = (cos_phi * slope.x - sin_phi * slope.y) * a;
-        let sy = (sin_phi * slope.x + cos_phi * slope.y) * a;
+        let sx = (cos_phi * slope.x - sin_phi * slope.y) * au;
+        let sy = (sin_phi * slope.x + cos_phi * slope.y) * av;
         let m = Vec3::new(-sx, -sy, 1.0).normalize_or_zero();
         m.is_finite().then_some(m).filter(|m| *m != Vec3::ZERO)
     }
@@ -312,8 +344,22 @@ mod tests {
             for alpha in [0.05, 0.3, 0.8] {
                 all.push(Microfacet::new(kind, alpha).expect("finite alpha"));
             }
+            for (alpha_u, alpha_v) in [(0.1, 0.4), (0.5, 0.2)] {
+                all.push(Microfacet::anisotropic(kind, alpha_u, alpha_v).expect("finite alpha"));
+            }
         }
         all
+    }
+
+    /// A direction at polar angle `theta` and an azimuth between the tangents, where an
+    /// anisotropic lobe is neither of its two widths.
+    fn oblique(theta: f32) -> Vec3 {
+        let phi = 0.7_f32;
+        Vec3::new(
+            theta.sin() * phi.cos(),
+            theta.sin() * phi.sin(),
+            theta.cos(),
+        )
     }
 
     #[test]
@@ -329,7 +375,7 @@ mod tests {
     fn visible_normal_density_integrates_to_one() {
         for distr in distributions() {
             for theta_o in [0.0_f32, 0.8, 1.45] {
-                let wo = Vec3::new(theta_o.sin(), 0.0, theta_o.cos());
+                let wo = oblique(theta_o);
                 let integral = integrate_hemisphere(|m| distr.visible_normal_pdf(wo, m));
                 assert!(
                     (integral - 1.0).abs() < 2e-3,
@@ -370,7 +416,11 @@ mod tests {
     #[test]
     fn roughness_is_clamped_and_validated() {
         let tiny = Microfacet::new(MicrofacetKind::Ggx, 0.0).expect("finite alpha");
-        assert_eq!(tiny.alpha(), Microfacet::MIN_ALPHA);
+        assert_eq!(tiny.alpha(), Vec2::splat(Microfacet::MIN_ALPHA));
+        let stretched = Microfacet::anisotropic(MicrofacetKind::Ggx, 0.0, 0.3).expect("finite");
+        assert_eq!(stretched.alpha(), Vec2::new(Microfacet::MIN_ALPHA, 0.3));
+        assert!(stretched.is_anisotropic() && !tiny.is_anisotropic());
+        assert!(Microfacet::anisotropic(MicrofacetKind::Ggx, 0.2, f32::NAN).is_err());
         assert!(Microfacet::new(MicrofacetKind::Beckmann, f32::NAN).is_err());
         assert!(Microfacet::new(MicrofacetKind::Beckmann, f32::INFINITY).is_err());
     }
@@ -380,7 +430,7 @@ mod tests {
         let mut rng = sampling::Rng::new(7);
         for distr in distributions() {
             for theta_o in [0.0_f32, 0.8, 1.55] {
-                let wo = Vec3::new(theta_o.sin(), 0.0, theta_o.cos());
+                let wo = oblique(theta_o);
                 for _ in 0..1000 {
                     let u = Vec2::new(rng.next_f32(), rng.next_f32());
                     let (m, pdf) = distr

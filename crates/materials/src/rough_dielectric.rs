@@ -55,6 +55,11 @@ impl RoughDielectric {
         })
     }
 
+    /// The microfacet distribution.
+    pub fn distribution(&self) -> Microfacet {
+        self.distribution
+    }
+
     /// Reflectance and transmittance multipliers at normal incidence, RGB, as for the smooth
     /// dielectric: F₀ · `specular_reflectance` + (1 − F₀) · `specular_transmittance`.
     pub fn normal_albedo(&self) -> Vec3 {

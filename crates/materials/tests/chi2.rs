@@ -15,14 +15,14 @@ mod fixtures;
 use fixtures::{ALPHAS, INCIDENCE_DEGREES, gold, incidence, rough_conductor};
 use glam::{Vec2, Vec3};
 use materials::{
-    Blend, Bsdf, ComplexIor, Diffuse, Microfacet, MicrofacetKind, Plastic, RoughDielectric,
-    RoughPlastic, TwoSided,
+    Blend, Bsdf, ComplexIor, Diffuse, Microfacet, MicrofacetKind, Plastic, RoughConductor,
+    RoughDielectric, RoughPlastic, TwoSided,
 };
 use sampling::Rng;
 use sampling::chi2::{Chi2Config, Chi2Domain, Chi2Outcome, chi2_test};
 
 /// Number of (BSDF, wo) cases tested for goodness of fit in this file.
-const CASES: u32 = 37;
+const CASES: u32 = 43;
 
 /// Family-wise significance level over all cases.
 const FAMILY_SIGNIFICANCE: f64 = 0.01;
@@ -281,6 +281,39 @@ fn blend_sampling_matches_pdf() {
             incidence(degrees),
             70 + i as u32,
         );
+    }
+}
+
+#[test]
+fn anisotropic_roughness_sampling_matches_pdf() {
+    // Stretched lobes seen from an azimuth between the two tangents (where neither width is the
+    // lobe's), for a conductor of both distributions and for glass from outside and inside.
+    let oblique = |degrees: f32, below: bool| {
+        let theta = degrees.to_radians();
+        let phi = 0.6_f32;
+        let z = if below { -theta.cos() } else { theta.cos() };
+        Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), z)
+    };
+    let cases = [
+        (MicrofacetKind::Ggx, (0.1, 0.4), None, 40.0, false),
+        (MicrofacetKind::Ggx, (0.5, 0.15), None, 75.0, false),
+        (MicrofacetKind::Beckmann, (0.4, 0.1), None, 40.0, false),
+        (MicrofacetKind::Beckmann, (0.15, 0.5), None, 75.0, false),
+        (MicrofacetKind::Ggx, (0.1, 0.4), Some(1.5), 40.0, false),
+        (MicrofacetKind::Beckmann, (0.4, 0.15), Some(1.5), 30.0, true),
+    ];
+    for (i, (kind, (alpha_u, alpha_v), eta, degrees, below)) in cases.into_iter().enumerate() {
+        let distribution =
+            Microfacet::anisotropic(kind, alpha_u, alpha_v).expect("finite roughness");
+        let bsdf = match eta {
+            None => Bsdf::from(RoughConductor::new(distribution, gold(), Vec3::ONE)),
+            Some(eta) => Bsdf::from(
+                RoughDielectric::new(distribution, eta, 1.0, Vec3::ONE, Vec3::ONE)
+                    .expect("valid ior"),
+            ),
+        };
+        let name = format!("{kind:?} alpha ({alpha_u}, {alpha_v}), eta {eta:?}, {degrees} degrees");
+        assert_fits(&name, &bsdf, oblique(degrees, below), 300 + i as u32);
     }
 }
 

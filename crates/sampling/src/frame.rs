@@ -26,6 +26,24 @@ impl Frame {
         Self { s, t, n }
     }
 
+    /// The frame around the unit normal `n` whose first tangent is `dp_du` made perpendicular to
+    /// `n` (Gram–Schmidt) and normalised, as Mitsuba builds its shading frame from ∂p/∂u; the
+    /// frame of [`Self::from_normal`] when `dp_du` is zero, not finite or parallel to `n` (within
+    /// 10⁻⁵ of its length).
+    pub fn from_normal_and_tangent(n: Vec3, dp_du: Vec3) -> Self {
+        let s = dp_du - n * n.dot(dp_du);
+        // Parallel within rounding: what is left is noise, not a direction.
+        if !s.is_finite() || s.length_squared() <= 1e-10 * dp_du.length_squared() {
+            return Self::from_normal(n);
+        }
+        let s = s.normalize();
+        Self {
+            s,
+            t: n.cross(s),
+            n,
+        }
+    }
+
     /// The frame mirrored through its tangent plane: the same tangents and the opposite normal
     /// (left-handed). A vector's local coordinates in it are those in `self` with z negated,
     /// exactly.

@@ -83,3 +83,28 @@ proptest! {
         prop_assert!((f.to_local(v).length() - v.length()).abs() <= 1e-5 * v.length().max(1.0));
     }
 }
+
+#[test]
+fn tangent_frame_follows_the_tangent_and_falls_back_without_one() {
+    let n = Vec3::new(0.36, 0.48, 0.8);
+    // A tangent with a component along n, which the frame must remove.
+    let dp_du = Vec3::new(2.0, 0.0, 1.0);
+    let f = Frame::from_normal_and_tangent(n, dp_du);
+    let expected_s = (dp_du - n * n.dot(dp_du)).normalize();
+    assert!((f.s - expected_s).length() < 1e-6, "s = {}", f.s);
+    assert!((f.t - n.cross(expected_s)).length() < 1e-6, "t = {}", f.t);
+    assert!(f.s.dot(n).abs() < 1e-6 && (f.s.length() - 1.0).abs() < 1e-6);
+    // The tangent's local coordinates put it on the +x axis of the frame.
+    let local = f.to_local(dp_du);
+    assert!(
+        local.x > 0.0 && local.y.abs() < 1e-6,
+        "local tangent {local}"
+    );
+    for degenerate in [Vec3::ZERO, n * 3.0, n * 3.0 + Vec3::new(1e-7, 0.0, 0.0)] {
+        assert_eq!(
+            Frame::from_normal_and_tangent(n, degenerate),
+            Frame::from_normal(n),
+            "tangent {degenerate}"
+        );
+    }
+}

@@ -5,7 +5,8 @@ use crate::camera::Camera;
 use crate::features::SceneFeatures;
 use crate::plugins::texture::affine_to_uv;
 use crate::{
-    BsdfDesc, EmitterDesc, Geometry, LoadError, MicrofacetDistribution, SceneDesc, ShapeDesc,
+    BsdfDesc, EmitterDesc, Geometry, LoadError, MicrofacetDistribution, Roughness, SceneDesc,
+    ShapeDesc,
 };
 use geometry::{Accel, Shape, Sphere, TriangleMesh};
 use integrators::{Checkerboard, MaterialTexture, World};
@@ -221,12 +222,15 @@ fn area_light(shape: &ShapeDesc, radiance: glam::Vec3) -> Option<Light> {
 }
 
 /// The microfacet distribution of a rough BSDF, or why it cannot be built.
-fn microfacet(distribution: MicrofacetDistribution, alpha: f32) -> Result<Microfacet, String> {
+fn microfacet(
+    distribution: MicrofacetDistribution,
+    alpha: Roughness,
+) -> Result<Microfacet, String> {
     let kind = match distribution {
         MicrofacetDistribution::Beckmann => MicrofacetKind::Beckmann,
         MicrofacetDistribution::Ggx => MicrofacetKind::Ggx,
     };
-    Microfacet::new(kind, alpha).map_err(|e| e.to_string())
+    Microfacet::anisotropic(kind, alpha.u, alpha.v).map_err(|e| e.to_string())
 }
 
 /// The renderer's BSDF for `desc`, or why it cannot be built.
@@ -316,7 +320,7 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
             specular_reflectance,
             nonlinear,
         } => RoughPlastic::new(
-            microfacet(*distribution, *alpha)?,
+            microfacet(*distribution, Roughness::isotropic(*alpha))?,
             *int_ior,
             *ext_ior,
             *diffuse_reflectance,

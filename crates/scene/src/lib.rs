@@ -71,8 +71,8 @@ pub use build::{RenderScene, build};
 pub use camera::{Camera, ThinLens};
 pub use desc::{
     AreaEmitterDesc, BsdfDesc, EmitterDesc, FilmDesc, FilterDesc, FovAxis, Geometry,
-    IntegratorDesc, IntegratorKind, MeshDesc, MicrofacetDistribution, SamplerDesc, SamplerKind,
-    SceneDesc, SensorDesc, ShapeDesc, SphereDesc, ThinLensDesc,
+    IntegratorDesc, IntegratorKind, MeshDesc, MicrofacetDistribution, Roughness, SamplerDesc,
+    SamplerKind, SceneDesc, SensorDesc, ShapeDesc, SphereDesc, ThinLensDesc,
 };
 pub use error::LoadError;
 pub use features::SceneFeatures;

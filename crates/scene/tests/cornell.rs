@@ -6,7 +6,7 @@ use common::{close, data_dir, triangle_normal};
 use glam::{Vec2, Vec3};
 use scene::{
     BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
-    MicrofacetDistribution, SamplerKind, SceneDesc, ShapeDesc,
+    MicrofacetDistribution, Roughness, SamplerKind, SceneDesc, ShapeDesc,
 };
 
 fn cornell() -> SceneDesc {
@@ -196,7 +196,7 @@ fn ply_mesh_and_its_rough_conductor() {
         desc.bsdfs[quads.bsdf],
         BsdfDesc::RoughConductor {
             distribution: MicrofacetDistribution::Ggx,
-            alpha: 0.2,
+            alpha: Roughness::isotropic(0.2),
             eta: Vec3::new(0.2, 0.9, 1.1),
             k: Vec3::new(3.9, 2.4, 2.2),
             specular_reflectance: Vec3::ONE

@@ -245,11 +245,11 @@ fn unsupported_things() {
     expect(
         "aniso.xml",
         &wrap(
-            "<bsdf type=\"roughconductor\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/>\n</bsdf>",
+            "<bsdf type=\"roughplastic\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/>\n</bsdf>",
         ),
         5,
         "alpha_u",
-        "anisotropic",
+        "isotropic",
     );
     expect(
         "material.xml",
@@ -700,11 +700,11 @@ fn references_and_parameters() {
     expect(
         "frosted_anisotropic.xml",
         &wrap(
-            "<bsdf type=\"roughdielectric\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.3\"/>\n</bsdf>",
+            "<bsdf type=\"roughdielectric\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"-0.3\"/>\n</bsdf>",
         ),
-        5,
-        "alpha_u",
-        "anisotropic roughness",
+        6,
+        "alpha_v",
+        "roughness must be positive, got alpha_v = -0.3",
     );
     expect(
         "blend_one_bsdf.xml",

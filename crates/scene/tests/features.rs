@@ -6,7 +6,7 @@ use common::{close, data_dir, load, triangle_normal, wrap, write_scene};
 use glam::{Vec2, Vec3};
 use scene::{
     BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
-    MicrofacetDistribution, SamplerDesc, SamplerKind, SceneDesc, SphereDesc,
+    MicrofacetDistribution, Roughness, SamplerDesc, SamplerKind, SceneDesc, SphereDesc,
 };
 
 fn ok(name: &str, text: &str) -> SceneDesc {
@@ -101,13 +101,15 @@ fn bsdf_defaults_and_named_iors() {
         b[2],
         BsdfDesc::RoughConductor {
             distribution: scene::MicrofacetDistribution::Beckmann,
-            alpha: 0.1,
+            alpha: Roughness::isotropic(0.1),
             eta: Vec3::ZERO,
             k: Vec3::ONE,
             specular_reflectance: Vec3::ONE
         }
     );
-    assert!(matches!(b[3], BsdfDesc::RoughConductor { alpha, .. } if alpha == 0.3));
+    assert!(
+        matches!(b[3], BsdfDesc::RoughConductor { alpha, .. } if alpha == Roughness::isotropic(0.3))
+    );
     assert_eq!(
         b[4],
         BsdfDesc::Conductor {
@@ -179,7 +181,7 @@ fn rough_dielectric_parameters() {
         desc.bsdfs[0],
         BsdfDesc::RoughDielectric {
             distribution: MicrofacetDistribution::Beckmann,
-            alpha: 0.1,
+            alpha: Roughness::isotropic(0.1),
             int_ior: 1.5046,
             ext_ior: 1.000277,
             specular_reflectance: Vec3::ONE,
@@ -190,7 +192,7 @@ fn rough_dielectric_parameters() {
         desc.bsdfs[1],
         BsdfDesc::RoughDielectric {
             distribution: MicrofacetDistribution::Ggx,
-            alpha: 0.3,
+            alpha: Roughness::isotropic(0.3),
             int_ior: 1.333,
             ext_ior: 1.0,
             specular_reflectance: Vec3::splat(0.25),

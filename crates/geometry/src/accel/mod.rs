@@ -138,6 +138,36 @@ impl Accel {
         }
     }
 
+    /// The surface's first tangent direction at `hit` (world space, not normalised; zero where
+    /// it has none), Mitsuba's ∂p/∂u: for a mesh with texture coordinates the derivative of
+    /// position by u over the triangle (none where its coordinates are degenerate), for one
+    /// without `p1 − p0` (the barycentric
+    /// parameterisation), for a sphere the direction of growing φ about its own z axis (zero at
+    /// the poles). A shading frame for anisotropic BSDFs starts from it; computed on request.
+    pub fn dp_du(&self, hit: &Hit) -> Vec3 {
+        match &self.shapes[hit.shape as usize] {
+            Shape::Mesh(mesh) => {
+                let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
+                let p = &mesh.positions;
+                let (dp0, dp1) = (p[i1] - p[i0], p[i2] - p[i0]);
+                let Some(uv) = &mesh.uvs else {
+                    return dp0;
+                };
+                let (duv0, duv1) = (uv[i1] - uv[i0], uv[i2] - uv[i0]);
+                let det = duv0.x * duv1.y - duv0.y * duv1.x;
+                if det == 0.0 {
+                    return Vec3::ZERO;
+                }
+                (duv1.y * dp0 - duv0.y * dp1) / det
+            }
+            Shape::Sphere(sphere) => {
+                let outward = if sphere.flip_normals { -hit.ng } else { hit.ng };
+                let local = sphere.to_local * outward;
+                sphere.to_local.transpose() * Vec3::new(-local.y, local.x, 0.0)
+            }
+        }
+    }
+
     /// Completes the hit of `ray` that traversal found.
     fn surface_hit(&self, ray: &Ray, found: Found) -> Hit {
         match found {

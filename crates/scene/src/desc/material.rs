@@ -4,6 +4,23 @@ use glam::{Mat3, Vec3};
 use materials::BitmapTexture;
 use std::sync::Arc;
 
+/// The roughness of a microfacet BSDF: α along the shading frame's first tangent (∂p/∂u) and
+/// along its second, Mitsuba's `alpha_u` and `alpha_v` (both `alpha` when isotropic), positive.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Roughness {
+    /// α along the first tangent.
+    pub u: f32,
+    /// α along the second tangent.
+    pub v: f32,
+}
+
+impl Roughness {
+    /// The same α in every direction.
+    pub fn isotropic(alpha: f32) -> Self {
+        Self { u: alpha, v: alpha }
+    }
+}
+
 /// Microfacet normal distribution of a rough conductor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MicrofacetDistribution {
@@ -33,12 +50,12 @@ pub enum BsdfDesc {
         /// Multiplier on the reflected light, each channel in [0, 1] (default 1).
         specular_reflectance: Vec3,
     },
-    /// `roughconductor`: microfacet metal (isotropic roughness only).
+    /// `roughconductor`: microfacet metal.
     RoughConductor {
         /// Microfacet distribution (default Beckmann).
         distribution: MicrofacetDistribution,
-        /// Roughness α (default 0.1), positive.
-        alpha: f32,
+        /// Roughness (default α = 0.1), possibly anisotropic.
+        alpha: Roughness,
         /// Real part of the relative index of refraction, per channel.
         eta: Vec3,
         /// Imaginary part (absorption), per channel.
@@ -61,8 +78,8 @@ pub enum BsdfDesc {
     RoughDielectric {
         /// Microfacet distribution (default Beckmann).
         distribution: MicrofacetDistribution,
-        /// Roughness α (default 0.1), positive.
-        alpha: f32,
+        /// Roughness (default α = 0.1), possibly anisotropic.
+        alpha: Roughness,
         /// Index of refraction inside (on the side opposite the normal), default bk7 = 1.5046.
         int_ior: f32,
         /// Index of refraction outside, default air = 1.000277.

@@ -6,7 +6,7 @@ mod shape;
 
 use std::path::PathBuf;
 
-pub use material::{AreaEmitterDesc, BsdfDesc, EmitterDesc, MicrofacetDistribution};
+pub use material::{AreaEmitterDesc, BsdfDesc, EmitterDesc, MicrofacetDistribution, Roughness};
 pub use render::{
     FilmDesc, FilterDesc, FovAxis, IntegratorDesc, IntegratorKind, SamplerDesc, SamplerKind,
     SensorDesc, ThinLensDesc,

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use super::texture::{TextureDesc, texture};
 use super::{child_loc, unexpected_child, unknown_type};
-use crate::desc::{BsdfDesc, MicrofacetDistribution};
+use crate::desc::{BsdfDesc, MicrofacetDistribution, Roughness};
 use crate::error::Result;
 use crate::ior::{CONDUCTORS, ior_names, lookup_conductor, lookup_ior};
 use crate::params::{ColorKind, Params};
@@ -183,7 +183,7 @@ impl<'a> BsdfTable<'a> {
                 let (eta, k) = conductor_ior(&mut params)?;
                 BsdfDesc::RoughConductor {
                     distribution: distribution(&mut params)?,
-                    alpha: alpha(&mut params)?,
+                    alpha: roughness(&mut params)?,
                     eta,
                     k,
                     specular_reflectance: specular_reflectance(&mut params)?,
@@ -202,7 +202,7 @@ impl<'a> BsdfTable<'a> {
                 let (int_ior, ext_ior) = distinct_iors(&mut params, 1.5046)?;
                 BsdfDesc::RoughDielectric {
                     distribution: distribution(&mut params)?,
-                    alpha: alpha(&mut params)?,
+                    alpha: roughness(&mut params)?,
                     int_ior,
                     ext_ior,
                     specular_reflectance: specular_reflectance(&mut params)?,
@@ -722,22 +722,30 @@ fn distribution(params: &mut Params) -> Result<MicrofacetDistribution> {
     }
 }
 
-/// The isotropic roughness: `alpha` (default 0.1), or equal `alpha_u` and `alpha_v`.
+/// The isotropic roughness of a BSDF that has no other (Mitsuba's `roughplastic`): `alpha`
+/// (default 0.1), or equal `alpha_u` and `alpha_v`.
 fn alpha(params: &mut Params) -> Result<f32> {
+    let Roughness { u, v } = roughness(params)?;
+    if u != v {
+        return Err(params
+            .loc_of("alpha_u")
+            .error("this BSDF's roughness is isotropic: alpha_u and alpha_v must be equal"));
+    }
+    Ok(u)
+}
+
+/// The roughness: `alpha` (default 0.1), or `alpha_u` along ∂p/∂u and `alpha_v` across it,
+/// each positive.
+fn roughness(params: &mut Params) -> Result<Roughness> {
     // Mitsuba's sample_visible only changes the sampling strategy, not the image.
     params.boolean_or("sample_visible", true)?;
     let alpha = params.float("alpha")?;
     let alpha_u = params.float("alpha_u")?;
     let alpha_v = params.float("alpha_v")?;
-    let value = match (alpha, alpha_u, alpha_v) {
-        (Some(a), None, None) => a,
-        (None, None, None) => 0.1,
-        (None, Some(u), Some(v)) if u == v => u,
-        (None, Some(_), Some(_)) => {
-            return Err(params
-                .loc_of("alpha_u")
-                .error("anisotropic roughness (alpha_u != alpha_v) is not supported"));
-        }
+    let (u, v) = match (alpha, alpha_u, alpha_v) {
+        (Some(a), None, None) => (a, a),
+        (None, None, None) => (0.1, 0.1),
+        (None, Some(u), Some(v)) => (u, v),
         (None, _, _) => {
             return Err(params
                 .loc()
@@ -749,12 +757,18 @@ fn alpha(params: &mut Params) -> Result<f32> {
                 .error("give either \"alpha\" or \"alpha_u\"/\"alpha_v\", not both"));
         }
     };
-    if value <= 0.0 {
-        return Err(params
-            .loc_of("alpha")
-            .error(format!("roughness must be positive, got {value}")));
+    for (value, name) in [(u, "alpha_u"), (v, "alpha_v")] {
+        if value <= 0.0 {
+            let name = if alpha.is_some() { "alpha" } else { name };
+            return Err(params
+                .loc_of(name)
+                .error(format!("roughness must be positive, got {name} = {value}")));
+        }
     }
-    Ok(value as f32)
+    Ok(Roughness {
+        u: u as f32,
+        v: v as f32,
+    })
 }
 
 /// A coated material's `diffuse_reflectance` (default 0.5), `specular_reflectance` (default 1)
