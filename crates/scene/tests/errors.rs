@@ -252,6 +252,15 @@ fn unsupported_things() {
         "isotropic",
     );
     expect(
+        "textured_roughness.xml",
+        &wrap(
+            "<bsdf type=\"roughconductor\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<texture type=\"checkerboard\" name=\"alpha_v\"/>\n</bsdf>",
+        ),
+        6,
+        "<texture type=\"checkerboard\" name=\"alpha_v\">",
+        "textured roughness (a texture for \"alpha_v\") is not supported",
+    );
+    expect(
         "material.xml",
         &wrap("<bsdf type=\"conductor\">\n<string name=\"material\" value=\"Xx\"/>\n</bsdf>"),
         5,

@@ -152,6 +152,7 @@ impl<'a> BsdfTable<'a> {
         let texture = match texture_name {
             Some(name) => self.texture_param(node, name, &[])?,
             None => {
+                refuse_textured_roughness(node)?;
                 super::no_children(node)?;
                 None
             }
@@ -720,6 +721,22 @@ fn distribution(params: &mut Params) -> Result<MicrofacetDistribution> {
             ))),
         },
     }
+}
+
+/// Fails, naming the parameter, when a rough BSDF's roughness is given by a nested texture
+/// (Mitsuba's textured `alpha`, `alpha_u` or `alpha_v`), which Strata does not support.
+fn refuse_textured_roughness(node: &ObjectNode) -> Result<()> {
+    for child in &node.children {
+        if let Child::Object(texture) = child
+            && let Some(name) = texture.name.as_deref()
+            && ["alpha", "alpha_u", "alpha_v"].contains(&name)
+        {
+            return Err(texture.loc.error(format!(
+                "textured roughness (a texture for \"{name}\") is not supported: give a <float>"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The isotropic roughness of a BSDF that has no other (Mitsuba's `roughplastic`): `alpha`
