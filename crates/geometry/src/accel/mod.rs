@@ -141,9 +141,9 @@ impl Accel {
     /// The surface's first tangent direction at `hit` (world space, not normalised; zero where
     /// it has none), Mitsuba's ∂p/∂u: for a mesh with texture coordinates the derivative of
     /// position by u over the triangle (none where its coordinates are degenerate), for one
-    /// without `p1 − p0` (the barycentric
-    /// parameterisation), for a sphere the direction of growing φ about its own z axis (zero at
-    /// the poles). A shading frame for anisotropic BSDFs starts from it; computed on request.
+    /// without `p1 − p0` (the barycentric parameterisation), for a sphere the direction of
+    /// growing φ about its own z axis (zero at the poles). A shading frame for anisotropic BSDFs
+    /// starts from it; computed on request.
     pub fn dp_du(&self, hit: &Hit) -> Vec3 {
         match &self.shapes[hit.shape as usize] {
             Shape::Mesh(mesh) => {
