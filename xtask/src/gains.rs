@@ -123,6 +123,7 @@ impl Subject {
             light_tracing: false,
             direct_samples: None,
             skip_null_vertices: self.scene.desc.integrator.skip_null_vertices,
+            path_reuse: None,
         }
     }
 

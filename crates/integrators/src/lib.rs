@@ -10,6 +10,7 @@ mod light_tracer;
 mod next_direction;
 mod optional_draw;
 pub mod path;
+pub mod path_reuse;
 mod ray_log;
 pub mod reference;
 mod settings;
@@ -21,5 +22,7 @@ pub use counters::{RayCounters, RayTally};
 pub use light_tracer::{CameraConnection, LightTracer};
 pub use path::PathIntegrator;
 pub use ray_log::{RayLog, ShadowRay};
-pub use settings::{DirectSamples, LightSelectionMode, Mis, PathSettings, RussianRoulette};
+pub use settings::{
+    DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
+};
 pub use world::{BsdfSlot, Checkerboard, MaterialId, MaterialTexture, SurfaceHit, World};

@@ -17,6 +17,7 @@ use crate::delta_lights::delta_lights;
 use crate::light_choice::choose_light;
 use crate::next_direction::NextDirection;
 use crate::optional_draw::next_1d_if;
+use crate::path_reuse::{FirstVertex, ReusablePath, SecondVertex};
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{DirectSamples, LightSelectionMode, Mis, PathSettings};
 use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf};
@@ -121,6 +122,41 @@ impl PathIntegrator {
         counters: &mut impl RayTally,
         slot: &mut BsdfSlot,
     ) -> Vec3 {
+        self.walk::<false>(world, camera_ray, sampler, counters, slot)
+            .own
+    }
+
+    /// [`Self::radiance`] split for path reuse ([`crate::path_reuse`]): the same path, drawing
+    /// the same sampler dimensions, with its first and second vertices kept where both are
+    /// diffuse and the radiance the second reflects towards the first kept apart from the rest
+    /// of the estimate. [`crate::path_reuse::combine`] then connects the paths of a block.
+    /// Without [`PathSettings::path_reuse`] (or where [`PathSettings::reuse_applies`] is false)
+    /// nothing is split and `own` is the whole estimate.
+    pub fn radiance_reusable(
+        &self,
+        world: &World,
+        camera_ray: CameraRay,
+        sampler: &mut impl Sampler,
+        counters: &mut impl RayTally,
+        slot: &mut BsdfSlot,
+    ) -> ReusablePath {
+        if self.settings.path_reuse.is_some() && self.settings.reuse_applies() {
+            self.walk::<true>(world, camera_ray, sampler, counters, slot)
+        } else {
+            self.walk::<false>(world, camera_ray, sampler, counters, slot)
+        }
+    }
+
+    /// The path walk behind [`Self::radiance`] and, with `REUSE`, [`Self::radiance_reusable`].
+    #[inline(always)]
+    fn walk<const REUSE: bool>(
+        &self,
+        world: &World,
+        camera_ray: CameraRay,
+        sampler: &mut impl Sampler,
+        counters: &mut impl RayTally,
+        slot: &mut BsdfSlot,
+    ) -> ReusablePath {
         let settings = &self.settings;
         let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
         let mut radiance = Vec3::ZERO;
@@ -144,6 +180,13 @@ impl PathIntegrator {
         // The number of the vertex the ray is about to find: one more per bounce, not per pass
         // through a null lobe with `skip_null_vertices`.
         let mut depth = 1;
+        // For path reuse: the first vertex where it is diffuse, the second once it is found
+        // diffuse, and then the estimate up to the second vertex (`own`) and the throughput to
+        // it (`prefix`), while `radiance` and `throughput` go on from the second vertex alone.
+        let mut first: Option<FirstVertex> = None;
+        let mut second: Option<SecondVertex> = None;
+        let mut own = Vec3::ZERO;
+        let mut prefix = Vec3::ONE;
         loop {
             let hidden = depth == 1 && settings.hide_emitters;
             let found = if hidden {
@@ -176,6 +219,20 @@ impl PathIntegrator {
                 break;
             }
             let wo = surface.frame.to_local(-ray.dir);
+            if REUSE {
+                if depth == 1 {
+                    first = FirstVertex::at(&surface, wo);
+                } else if depth == 2
+                    && first.is_some()
+                    && let Some(found) = SecondVertex::at(&surface)
+                {
+                    second = Some(found);
+                    own = radiance;
+                    radiance = Vec3::ZERO;
+                    prefix = throughput;
+                    throughput = Vec3::ONE;
+                }
+            }
             if let Some(samples) = settings.direct_samples {
                 radiance += self.direct_samples(world, &surface, wo, samples, sampler, counters);
                 break;
@@ -208,7 +265,7 @@ impl PathIntegrator {
                 && depth >= roulette.start_depth
             {
                 let u_survive = sampler.next_1d();
-                let survival = (throughput.max_element() * eta_scale).clamp(0.0, 1.0);
+                let survival = ((throughput * prefix).max_element() * eta_scale).clamp(0.0, 1.0);
                 if u_survive >= survival {
                     break;
                 }
@@ -230,7 +287,21 @@ impl PathIntegrator {
             t_max = f32::INFINITY;
             depth += u32::from(!passes_null);
         }
-        radiance
+        match second {
+            Some(mut second) => {
+                second.reflected = radiance;
+                ReusablePath {
+                    own,
+                    first,
+                    second: Some(second),
+                }
+            }
+            None => ReusablePath {
+                own: radiance,
+                first,
+                second: None,
+            },
+        }
     }
 
     /// Light that `surface` reflects towards `wo` straight from the lights, by next event

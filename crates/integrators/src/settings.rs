@@ -99,6 +99,20 @@ pub struct PathSettings {
     /// with other noise. Light tracing does not know the rule and must be off where null lobes
     /// are.
     pub skip_null_vertices: bool,
+    /// Path reuse (see [`PathReuse`]), `None` for off. Only with BSDF sampling, a `max_depth`
+    /// of at least 3, roulette from depth 2 or later, and neither light tracing,
+    /// `direct_samples` nor `skip_null_vertices` (see [`PathSettings::reuse_applies`]).
+    pub path_reuse: Option<PathReuse>,
+}
+
+/// Path reuse (see [`crate::path_reuse`]): the renderer traces the camera samples of each block
+/// of `block × block` pixels together, and each pixel's first vertex is connected by a shadow
+/// ray to the second vertex of every other path of the block, so that each pixel's indirect
+/// light is estimated from all the block's paths. Applies where both vertices are diffuse.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PathReuse {
+    /// Block edge in pixels: 2 or 4 (blocks must tile the renderer's tiles).
+    pub block: u32,
 }
 
 impl Default for PathSettings {
@@ -114,11 +128,26 @@ impl Default for PathSettings {
             light_tracing: false,
             direct_samples: None,
             skip_null_vertices: false,
+            path_reuse: None,
         }
     }
 }
 
 impl PathSettings {
+    /// Whether [`PathSettings::path_reuse`] can act with the other settings: BSDF sampling (the
+    /// densities it combines are the BSDF's), at least 3 vertices (else the second vertex
+    /// reflects nothing), roulette not before the second vertex (so that every first vertex
+    /// continues its path), and none of the settings that change what a path's second vertex
+    /// is or what it finds: light tracing, `direct_samples`, `skip_null_vertices`.
+    pub fn reuse_applies(&self) -> bool {
+        self.sample_bsdf
+            && self.max_depth.is_none_or(|d| d >= 3)
+            && self.russian_roulette.is_none_or(|r| r.start_depth >= 2)
+            && !self.light_tracing
+            && self.direct_samples.is_none()
+            && !self.skip_null_vertices
+    }
+
     /// Names of the techniques these settings switch on, for reports.
     pub fn technique_names(&self) -> Vec<String> {
         let mut names = Vec::new();
@@ -151,9 +180,63 @@ impl PathSettings {
         if self.light_tracing {
             names.push("light-tracing-caustics".to_string());
         }
+        if let Some(PathReuse { block }) = self.path_reuse {
+            names.push(format!("path-reuse-{block}x{block}"));
+        }
         if let Some(DirectSamples { light, bsdf }) = self.direct_samples {
             names.push(format!("direct-{light}-light-{bsdf}-bsdf-samples"));
         }
         names
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn path_reuse_applies_only_where_every_first_vertex_continues_its_path() {
+        let base = PathSettings {
+            max_depth: Some(8),
+            russian_roulette: Some(RussianRoulette { start_depth: 5 }),
+            ..PathSettings::default()
+        };
+        assert!(base.reuse_applies());
+        assert!(
+            PathSettings {
+                max_depth: None,
+                ..base
+            }
+            .reuse_applies()
+        );
+        let refused = [
+            PathSettings {
+                max_depth: Some(2),
+                ..base
+            },
+            PathSettings {
+                sample_bsdf: false,
+                ..base
+            },
+            PathSettings {
+                russian_roulette: Some(RussianRoulette { start_depth: 1 }),
+                ..base
+            },
+            PathSettings {
+                light_tracing: true,
+                ..base
+            },
+            PathSettings {
+                skip_null_vertices: true,
+                ..base
+            },
+            PathSettings {
+                direct_samples: Some(DirectSamples { light: 1, bsdf: 1 }),
+                ..base
+            },
+        ];
+        for settings in refused {
+            assert!(!settings.reuse_applies(), "{settings:?}");
+        }
     }
 }

@@ -5,7 +5,9 @@
 //! one tile, its samples are added to its sums in sample-index order, and passes continue the
 //! sample indices where the previous pass stopped. The film is therefore bit-identical whatever
 //! the number of threads, the tile size, the order in which tiles finish, and how the samples
-//! are split into passes.
+//! are split into passes. With blocks ([`render_blocks`]) the same holds per block: blocks are
+//! aligned to the image, never cross a tile, and their samples are taken together in
+//! sample-index order.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -174,6 +176,51 @@ where
     I: Fn() -> S + Sync + Send,
     F: Fn(&mut S, UVec2, u32) -> Vec3 + Sync + Send,
 {
+    render_blocks(
+        width,
+        height,
+        budget,
+        options,
+        1,
+        init,
+        |scratch: &mut S, pixels: &[UVec2], index: u32, values: &mut [Vec3]| {
+            values[0] = sample(scratch, pixels[0], index);
+        },
+        light_paths,
+    )
+}
+
+/// The most pixels in a block of [`render_blocks`] (a block edge of at most 4).
+pub const MAX_BLOCK_PIXELS: usize = 16;
+
+/// [`render_with_light_paths`] taking the samples of `block × block` pixels at once (`block` is
+/// 1, 2 or 4; blocks are aligned to the image and cut by its edges): `sample_block(scratch,
+/// pixels, sample_index, values)` writes one radiance sample of each of `pixels` (those of a
+/// block that have sample `sample_index`, in row order) to `values`, of the same length. As
+/// with [`render`], each value must depend only on the pixels and the sample index. Tiles are
+/// rounded up to a multiple of the block, so that no block crosses a tile.
+///
+/// # Panics
+/// If `block` is not 1, 2 or 4.
+#[allow(clippy::too_many_arguments)]
+pub fn render_blocks<S, I, F>(
+    width: u32,
+    height: u32,
+    budget: &RenderBudget,
+    options: &RenderOptions,
+    block: u32,
+    init: I,
+    sample_block: F,
+    light_paths: Option<&LightPaths<'_, S>>,
+) -> Result<RenderOutput, BudgetError>
+where
+    I: Fn() -> S + Sync + Send,
+    F: Fn(&mut S, &[UVec2], u32, &mut [Vec3]) + Sync + Send,
+{
+    assert!(
+        matches!(block, 1 | 2 | 4),
+        "block edge {block} is not 1, 2 or 4"
+    );
     budget.validate()?;
     let threads = rayon::current_num_threads();
     // Allocated sample counts make tiles' work unequal: four times as many tiles keeps the
@@ -181,7 +228,8 @@ where
     let balancing = if options.allocation.is_some() { 4 } else { 1 };
     let tile_size = options
         .tile_size
-        .unwrap_or_else(|| tile_size_for(width, height, threads * balancing));
+        .unwrap_or_else(|| tile_size_for(width, height, threads * balancing))
+        .next_multiple_of(block);
     let tiles = tiles(width, height, tile_size);
     let (mut film, resumed_spp, mut passes, mut non_finite) = match options.resume.as_deref() {
         None => (Film::new(width, height), 0, 0, NonFiniteCounts::default()),
@@ -236,7 +284,7 @@ where
                 .map_or(0.0, |max| start.elapsed().as_secs_f64() / max);
             progress.set_fraction(spp_fraction.max(time_fraction));
         };
-        let pass = render_pass(
+        let pass = render_block_pass(
             &mut film,
             &tiles,
             PassSamples {
@@ -244,8 +292,9 @@ where
                 count: pass_spp,
                 allocation: options.allocation.as_deref(),
             },
+            block,
             &init,
-            &sample,
+            &sample_block,
             light_paths,
             &report,
         );
@@ -312,6 +361,37 @@ where
     I: Fn() -> S + Sync + Send,
     F: Fn(&mut S, UVec2, u32) -> Vec3 + Sync + Send,
 {
+    render_block_pass(
+        film,
+        tiles,
+        samples,
+        1,
+        init,
+        &|scratch: &mut S, pixels: &[UVec2], index: u32, values: &mut [Vec3]| {
+            values[0] = sample(scratch, pixels[0], index);
+        },
+        light_paths,
+        report,
+    )
+}
+
+/// [`render_pass`] by blocks of `block × block` pixels, as [`render_blocks`] takes them; each
+/// tile's origin and size must be multiples of `block` except where the image ends.
+#[allow(clippy::too_many_arguments)]
+fn render_block_pass<S, I, F>(
+    film: &mut Film,
+    tiles: &[Tile],
+    samples: PassSamples<'_>,
+    block: u32,
+    init: &I,
+    sample_block: &F,
+    light_paths: Option<&LightPaths<'_, S>>,
+    report: &(dyn Fn(f64) + Sync),
+) -> NonFiniteCounts
+where
+    I: Fn() -> S + Sync + Send,
+    F: Fn(&mut S, &[UVec2], u32, &mut [Vec3]) + Sync + Send,
+{
     let done = AtomicUsize::new(0);
     let shared: &Film = film;
     // One tile per rayon job, so an idle thread can take any tile left: by default rayon
@@ -323,37 +403,44 @@ where
         .par_iter()
         .with_max_len(1)
         .map_init(init, |scratch, tile| {
-            let mut result = TileResult::default();
-            result.sums = tile
-                .pixels()
-                .map(|pixel| {
-                    let mut sums = *shared.pixel(pixel);
-                    for index in samples.indices(pixel) {
-                        let value = sample(scratch, pixel, index);
+            let mut result = TileResult {
+                sums: tile.pixels().map(|pixel| *shared.pixel(pixel)).collect(),
+                ..TileResult::default()
+            };
+            for block_origin in block_origins(tile, block) {
+                let pixels = block_pixels(tile, block_origin, block, &samples);
+                let first = pixels.clone().map(|(_, _, r)| r.start).min().unwrap_or(0);
+                let end = pixels.clone().map(|(_, _, r)| r.end).max().unwrap_or(0);
+                let mut taking = [UVec2::ZERO; MAX_BLOCK_PIXELS];
+                let mut slots = [0usize; MAX_BLOCK_PIXELS];
+                let mut values = [Vec3::ZERO; MAX_BLOCK_PIXELS];
+                for index in first..end {
+                    let mut count = 0;
+                    for (pixel, slot, range) in pixels.clone() {
+                        if range.contains(&index) {
+                            taking[count] = pixel;
+                            slots[count] = slot;
+                            count += 1;
+                        }
+                    }
+                    // Pixels' ranges may leave gaps (an empty range starts anywhere).
+                    if count == 0 {
+                        continue;
+                    }
+                    sample_block(scratch, &taking[..count], index, &mut values[..count]);
+                    for ((&pixel, &slot), &value) in taking[..count].iter().zip(&slots).zip(&values)
+                    {
                         if value.is_finite() {
-                            sums.add(value);
+                            result.sums[slot].add(value);
                         } else {
                             result.counts.count(value);
                         }
                         if let Some(trace) = light_paths {
-                            result.light_paths += 1;
-                            let first_splat = result.splats.len();
-                            trace(scratch, pixel, index, &mut result.splats);
-                            let mut kept = first_splat;
-                            for i in first_splat..result.splats.len() {
-                                if result.splats[i].1.is_finite() {
-                                    result.splats[kept] = result.splats[i];
-                                    kept += 1;
-                                } else {
-                                    result.counts.count(result.splats[i].1);
-                                }
-                            }
-                            result.splats.truncate(kept);
+                            trace_light_path(trace, scratch, pixel, index, &mut result);
                         }
                     }
-                    sums
-                })
-                .collect();
+                }
+            }
             let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
             report(finished as f64 / tiles.len() as f64);
             result
@@ -371,6 +458,60 @@ where
         total.merge(result.counts);
     }
     total
+}
+
+/// The tile-relative origins of the blocks of `tile`, in row order.
+fn block_origins(tile: &Tile, block: u32) -> impl Iterator<Item = UVec2> + '_ {
+    let step = block as usize;
+    (0..tile.size.y).step_by(step).flat_map(move |y| {
+        (0..tile.size.x)
+            .step_by(step)
+            .map(move |x| UVec2::new(x, y))
+    })
+}
+
+/// The pixels of the block at the tile-relative `origin`, in row order, each with its index in
+/// [`Tile::pixels`] order and its sample indices in the pass.
+fn block_pixels<'a>(
+    tile: &'a Tile,
+    origin: UVec2,
+    block: u32,
+    samples: &'a PassSamples<'_>,
+) -> impl Iterator<Item = (UVec2, usize, std::ops::Range<u32>)> + Clone + 'a {
+    let end = (origin + UVec2::splat(block)).min(tile.size);
+    (origin.y..end.y).flat_map(move |y| {
+        (origin.x..end.x).map(move |x| {
+            let pixel = tile.origin + UVec2::new(x, y);
+            (
+                pixel,
+                (y * tile.size.x + x) as usize,
+                samples.indices(pixel),
+            )
+        })
+    })
+}
+
+/// Traces the light path of `pixel`'s sample `index` and keeps its finite splats in `result`.
+fn trace_light_path<S>(
+    trace: &LightPaths<'_, S>,
+    scratch: &mut S,
+    pixel: UVec2,
+    index: u32,
+    result: &mut TileResult,
+) {
+    result.light_paths += 1;
+    let first_splat = result.splats.len();
+    trace(scratch, pixel, index, &mut result.splats);
+    let mut kept = first_splat;
+    for i in first_splat..result.splats.len() {
+        if result.splats[i].1.is_finite() {
+            result.splats[kept] = result.splats[i];
+            kept += 1;
+        } else {
+            result.counts.count(result.splats[i].1);
+        }
+    }
+    result.splats.truncate(kept);
 }
 
 /// What one tile of a pass produced.

@@ -3,11 +3,13 @@
 
 use crate::adaptive::{Allocation, PixelCosts, pilot_seed, split_budget};
 use crate::driver::{
-    BudgetError, LightPaths, RenderBudget, RenderOptions, RenderOutput, render_with_light_paths,
+    BudgetError, LightPaths, MAX_BLOCK_PIXELS, RenderBudget, RenderOptions, RenderOutput,
+    render_blocks, render_with_light_paths,
 };
 use crate::filter::{Filter, FilterError};
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
+use integrators::path_reuse::{self, ReusablePath};
 use integrators::{
     BsdfSlot, LightTracer, PathIntegrator, RayCounters, RayLog, RayTally, reference,
 };
@@ -307,28 +309,95 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         (costs.is_none() && light_tracer.is_some()).then_some(&trace_light_path);
     let has_lens = camera.has_lens();
     let signed_filter = filter.has_negative_lobes();
+    let new_worker = || Worker {
+        sampler: new_sampler(),
+        tally: T::default(),
+        slot: BsdfSlot::default(),
+        finish,
+    };
+    // The camera ray of `pixel`'s sample `sample_index`, and where on the film it starts.
+    let camera_ray = |sampler: &mut S, pixel: UVec2, sample_index: u32| {
+        sampler.start_pixel_sample(pixel, sample_index);
+        let film_position = filter.sample_film_position(pixel, sampler.next_2d(), width, height);
+        let u_lens = if has_lens {
+            sampler.next_2d()
+        } else {
+            Vec2::ZERO
+        };
+        (camera.generate_ray(film_position, u_lens), film_position)
+    };
+    let filter_weight = |radiance: Vec3, film_position: Vec2, pixel: UVec2| {
+        if signed_filter {
+            radiance * filter.sample_weight(film_position, pixel, width, height)
+        } else {
+            radiance
+        }
+    };
+    if let Integrator::Path(path) = integrator
+        && let Some(reuse) = path.settings().path_reuse
+    {
+        return render_blocks(
+            width,
+            height,
+            &plan.budget,
+            options,
+            reuse.block,
+            new_worker,
+            |worker: &mut Worker<'_, S, T>,
+             pixels: &[UVec2],
+             sample_index: u32,
+             values: &mut [Vec3]| {
+                let mut paths = [ReusablePath::default(); MAX_BLOCK_PIXELS];
+                let mut film_positions = [Vec2::ZERO; MAX_BLOCK_PIXELS];
+                for ((&pixel, reusable), film_position) in
+                    pixels.iter().zip(&mut paths).zip(&mut film_positions)
+                {
+                    let rays_before = costs.map(|_| worker.tally.counts());
+                    let (ray, position) = camera_ray(&mut worker.sampler, pixel, sample_index);
+                    *reusable = path.radiance_reusable(
+                        world,
+                        ray,
+                        &mut worker.sampler,
+                        &mut worker.tally,
+                        &mut worker.slot,
+                    );
+                    *film_position = position;
+                    if let (Some(costs), Some(before)) = (costs, rays_before) {
+                        costs.add(pixel, worker.tally.counts().since(before));
+                    }
+                }
+                let rays_before = costs.map(|_| worker.tally.counts());
+                let paths = &paths[..pixels.len()];
+                path_reuse::combine(world, paths, &mut worker.tally, values);
+                if let (Some(costs), Some(before)) = (costs, rays_before) {
+                    // The connections' rays, shared out evenly (the pilot only weighs costs).
+                    let connections = worker.tally.counts().since(before);
+                    let share = RayCounters {
+                        rays: connections.rays / paths.len() as u64,
+                        shadow_rays: connections.shadow_rays / paths.len() as u64,
+                    };
+                    for &pixel in pixels {
+                        costs.add(pixel, share);
+                    }
+                }
+                for ((value, &pixel), &film_position) in
+                    values.iter_mut().zip(pixels).zip(&film_positions)
+                {
+                    *value = filter_weight(*value, film_position, pixel);
+                }
+            },
+            light_paths,
+        );
+    }
     render_with_light_paths(
         width,
         height,
         &plan.budget,
         options,
-        || Worker {
-            sampler: new_sampler(),
-            tally: T::default(),
-            slot: BsdfSlot::default(),
-            finish,
-        },
+        new_worker,
         |worker: &mut Worker<'_, S, T>, pixel: UVec2, sample_index: u32| -> Vec3 {
+            let (ray, film_position) = camera_ray(&mut worker.sampler, pixel, sample_index);
             let sampler = &mut worker.sampler;
-            sampler.start_pixel_sample(pixel, sample_index);
-            let film_position =
-                filter.sample_film_position(pixel, sampler.next_2d(), width, height);
-            let u_lens = if has_lens {
-                sampler.next_2d()
-            } else {
-                Vec2::ZERO
-            };
-            let ray = camera.generate_ray(film_position, u_lens);
             let rays_before = costs.map(|_| worker.tally.counts());
             let radiance = match &integrator {
                 Integrator::Reference(settings) => {
@@ -341,11 +410,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             if let (Some(costs), Some(before)) = (costs, rays_before) {
                 costs.add(pixel, worker.tally.counts().since(before));
             }
-            if signed_filter {
-                radiance * filter.sample_weight(film_position, pixel, width, height)
-            } else {
-                radiance
-            }
+            filter_weight(radiance, film_position, pixel)
         },
         light_paths,
     )

@@ -8,7 +8,7 @@ use glam::{UVec2, Vec3};
 use render::adaptive::{Allocation, PixelCosts};
 use render::driver::{
     PassSamples, RenderBudget, RenderOptions, RenderOutput, ResumePoint, StopSignal, render,
-    render_pass,
+    render_blocks, render_pass,
 };
 use render::film::Film;
 use render::tiles::tiles;
@@ -127,6 +127,97 @@ fn an_allocation_gives_each_pixel_its_own_sample_count_whatever_the_threads() {
     // About the budget's mean number of samples per pixel overall.
     let mean = one.film.total_samples() as f64 / (45.0 * 29.0);
     assert!((mean - 12.0).abs() < 0.5, "mean {mean} samples per pixel");
+}
+
+/// Renders `budget` by `block × block` blocks on `threads` threads: each value is the
+/// deterministic sample of its pixel plus 2⁻¹² times the sum of the others of its call, so it
+/// depends on which pixels are taken together. Checks on the way that every call's pixels lie
+/// in one image-aligned block, in row order.
+fn render_blocks_on(
+    threads: usize,
+    block: u32,
+    budget: RenderBudget,
+    options: RenderOptions,
+) -> RenderOutput {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let sample_block = |calls: &mut u64, pixels: &[UVec2], index: u32, values: &mut [Vec3]| {
+        assert!(!pixels.is_empty() && pixels.len() <= (block * block) as usize);
+        assert!(
+            pixels.iter().all(|p| *p / block == pixels[0] / block),
+            "{pixels:?}"
+        );
+        assert!(
+            pixels
+                .windows(2)
+                .all(|w| (w[0].y, w[0].x) < (w[1].y, w[1].x))
+        );
+        let own: Vec<Vec3> = pixels
+            .iter()
+            .map(|&p| deterministic_sample(calls, p, index))
+            .collect();
+        let total: Vec3 = own.iter().sum();
+        for (value, own) in values.iter_mut().zip(&own) {
+            *value = *own + (total - *own) * (-12.0_f32).exp2();
+        }
+    };
+    pool.install(|| {
+        render_blocks(
+            45,
+            29,
+            &budget,
+            &options,
+            block,
+            || 0u64,
+            sample_block,
+            None,
+        )
+    })
+    .unwrap()
+}
+
+#[test]
+fn blocks_of_one_pixel_are_the_per_pixel_render() {
+    let options = RenderOptions {
+        allocation: Some(uneven_allocation()),
+        ..RenderOptions::quiet()
+    };
+    let pixels = render_on(2, RenderBudget::spp(7), options.clone());
+    let blocks = render_blocks_on(2, 1, RenderBudget::spp(7), options);
+    assert_eq!(pixels.film, blocks.film);
+}
+
+#[test]
+fn block_renders_are_bit_identical_across_threads_tiles_and_passes() {
+    for block in [2, 4] {
+        let allocation = uneven_allocation();
+        let with = |tile_size, allocation: &Option<Arc<Allocation>>| RenderOptions {
+            tile_size,
+            allocation: allocation.clone(),
+            ..RenderOptions::quiet()
+        };
+        for allocation in [None, Some(allocation.clone())] {
+            let one = render_blocks_on(1, block, RenderBudget::spp(9), with(None, &allocation));
+            let two = render_blocks_on(2, block, RenderBudget::spp(9), with(None, &allocation));
+            // Tiles of 5 are rounded up to a multiple of the block.
+            let odd = render_blocks_on(2, block, RenderBudget::spp(9), with(Some(5), &allocation));
+            assert_eq!(
+                one.film, two.film,
+                "{block}x{block} blocks, 1 and 2 threads"
+            );
+            assert_eq!(one.film, odd.film, "{block}x{block} blocks, tiles of 5");
+            // A pixel has exactly its own samples, the allocation's count of them.
+            let pixel = UVec2::new(2, 10);
+            let expected = allocation.as_ref().map_or(9, |a| a.samples(pixel, 9));
+            assert_eq!(one.film.pixel(pixel).count, expected);
+        }
+        // A block's pixels are taken together: the values differ from one pixel at a time.
+        let single = render_on(1, RenderBudget::spp(9), RenderOptions::quiet());
+        let blocks = render_blocks_on(1, block, RenderBudget::spp(9), RenderOptions::quiet());
+        assert_ne!(single.film, blocks.film);
+    }
 }
 
 #[test]

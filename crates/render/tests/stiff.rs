@@ -12,7 +12,7 @@ mod common;
 
 use common::{
     Configuration, NEAR_CLIP, Target, ZTest, configurations, film_mean, load_xml, mis_power,
-    render, scene_xml, z_test,
+    render, scene_xml, z_test, z_test_correlated,
 };
 use geometry::TriangleMesh;
 use glam::{UVec2, Vec2, Vec3};
@@ -124,6 +124,7 @@ fn every_configuration_is_exact(scene: &RenderScene, name: &str, spp: u32, exact
         "reference",
         common::reference(scene),
         SamplerKind::Independent,
+        false,
     )];
     let base = mis_power(
         common::max_depth(scene),
@@ -135,18 +136,25 @@ fn every_configuration_is_exact(scene: &RenderScene, name: &str, spp: u32, exact
         sampler,
     } in configurations(base)
     {
-        runs.push((label, Transport::Path(settings), sampler));
+        let correlated = settings.path_reuse.is_some();
+        runs.push((label, Transport::Path(settings), sampler, correlated));
     }
     runs.push((
         "auto-like: mis + roulette",
         mis(scene),
         SamplerKind::Independent,
+        false,
     ));
     let seed = 7;
-    for (label, transport, sampler) in runs {
+    for (label, transport, sampler, correlated) in runs {
         let what = format!("{name} / {label} ({spp} spp, seed {seed})");
         let film = render(scene, transport, sampler, spp, seed, &what);
-        assert_passes(z_test(&film, Target::Exact(&|_| exact), 2, ALPHA), &what);
+        let test = if correlated {
+            z_test_correlated
+        } else {
+            z_test
+        };
+        assert_passes(test(&film, Target::Exact(&|_| exact), 2, ALPHA), &what);
     }
 }
 
@@ -217,6 +225,24 @@ fn albedo_zero_furnace_shows_only_emission() {
     let xml = scene_xml(-1, false, camera, 60.0, NEAR_CLIP, body);
     let scene = load_xml(dir.path(), "black-furnace", &xml, SIZE);
     every_configuration_is_exact(&scene, "albedo-0 furnace", 16, Vec3::new(0.25, 0.5, 1.0));
+}
+
+#[test]
+fn grey_furnace_sums_the_bounces_for_every_configuration() {
+    // Inside an emitting sphere of albedo ½ with `max_depth` 5, emission is found at each of the
+    // five vertices, each bounce keeping half: every pixel is Le (1 + ½ + ¼ + ⅛ + 1/16). Every
+    // first and second vertex is diffuse and sees every other, so path reuse shares all of them.
+    let dir = tempfile::tempdir().unwrap();
+    let body = r#"    <shape type="sphere"><float name="radius" value="1"/>
+        <boolean name="flip_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="0.25, 0.5, 1"/></emitter></shape>"#;
+    let camera = r#"<lookat origin="0.2, 0.1, 0" target="0, 0, -1" up="0, 1, 0"/>"#;
+    let xml = scene_xml(5, false, camera, 60.0, NEAR_CLIP, body);
+    let scene = load_xml(dir.path(), "grey-furnace", &xml, SIZE);
+    let bounces: f32 = (0..5).map(|k| 0.5_f32.powi(k)).sum();
+    let exact = Vec3::new(0.25, 0.5, 1.0) * bounces;
+    every_configuration_is_exact(&scene, "albedo-½ furnace", 64, exact);
 }
 
 /// A tilted glass slab with index of refraction `ior` in a white sky, seen from outside.
@@ -470,8 +496,9 @@ fn a_smooth_normal_mesh_gains_no_energy_at_its_silhouette() {
     } in configurations(base)
     {
         let what = format!("smooth mesh / {label} (64 spp, seed 9)");
+        let correlated = settings.path_reuse.is_some();
         let film = render(&scene, Transport::Path(settings), sampler, 64, 9, &what);
-        let brightest = brightest_block_z(&film, Vec3::ONE);
+        let brightest = brightest_block_z(&film, Vec3::ONE, correlated);
         let mean = film_mean(&film);
         println!("figure: {what}: image mean {mean:.4}, largest block z above 1: {brightest:.2}");
         let limit = sampling::ztest::two_sided_threshold(sampling::ztest::sidak_alpha(
@@ -486,18 +513,26 @@ fn a_smooth_normal_mesh_gains_no_energy_at_its_silhouette() {
     }
 }
 
-/// The largest z = (block mean − `ceiling`) / standard error over 2 × 2 blocks and channels.
-fn brightest_block_z(film: &Film, ceiling: Vec3) -> f64 {
+/// The largest z = (block mean − `ceiling`) / standard error over 2 × 2 blocks and channels;
+/// with `correlated` pixels (path reuse) the block's variance is bounded by (Σ √var)², as in
+/// `common::z_test_correlated`.
+fn brightest_block_z(film: &Film, ceiling: Vec3, correlated: bool) -> f64 {
     let mut worst = f64::MIN;
     for by in 0..film.height() / 2 {
         for bx in 0..film.width() / 2 {
             for c in 0..3 {
-                let (mut excess, mut variance) = (0.0, 1e-24_f64);
+                let (mut excess, mut variance, mut deviation) = (0.0, 1e-24_f64, 0.0_f64);
                 for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
                     let pixel = film.pixel(UVec2::new(2 * bx + dx, 2 * by + dy));
                     excess += f64::from(pixel.mean()[c] - ceiling[c]);
-                    variance += f64::from(pixel.variance_of_mean()[c]);
+                    let pixel_variance = f64::from(pixel.variance_of_mean()[c]);
+                    if correlated {
+                        deviation += pixel_variance.sqrt();
+                    } else {
+                        variance += pixel_variance;
+                    }
                 }
+                variance += deviation * deviation;
                 let rounding = 1e-5 * 4.0 * f64::from(ceiling[c]);
                 worst = worst.max(excess / (variance + rounding * rounding).sqrt());
             }

@@ -17,7 +17,7 @@ mod common;
 
 use common::{
     Configuration, Target, configurations, film_mean, load_file, mis_power, render, scenes_dir,
-    z_test,
+    z_test, z_test_correlated,
 };
 use integrators::{Mis, PathSettings};
 use render::technique::Transport;
@@ -139,7 +139,12 @@ fn check_scene_with(name: &str, overrides: &[(&str, &str)], budget: Budget) {
                 }
             }
             _ => {
-                let outcome = z_test(&film, Target::Film(&reference), budget.block, ALPHA);
+                let test = if settings.path_reuse.is_some() {
+                    z_test_correlated
+                } else {
+                    z_test
+                };
+                let outcome = test(&film, Target::Film(&reference), budget.block, ALPHA);
                 println!("figure: {name} / {label} vs {oracle_name}: {outcome}");
                 if outcome.pass_fraction < REQUIRED_PASS_FRACTION {
                     failures.push(format!(

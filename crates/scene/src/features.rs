@@ -22,6 +22,9 @@ pub struct SceneFeatures {
     /// True when some material has a null lobe ([`Bsdf::has_null_lobe`]: `null`, a mask, a thin
     /// dielectric), which Mitsuba's volumetric path tracers do not count as a path vertex.
     pub has_null_lobes: bool,
+    /// True when some material is Lambertian (`diffuse`, or a `twosided` with one on either
+    /// side), which path reuse can connect.
+    pub has_diffuse_bsdfs: bool,
 }
 
 impl SceneFeatures {
@@ -48,6 +51,13 @@ impl SceneFeatures {
             has_environment: lights.iter().any(Light::is_environment),
             has_glossy_bsdfs: materials.iter().any(Bsdf::is_glossy),
             has_null_lobes: materials.iter().any(Bsdf::has_null_lobe),
+            has_diffuse_bsdfs: materials.iter().any(|m| match m {
+                Bsdf::Diffuse(_) => true,
+                Bsdf::TwoSided(two_sided) => [two_sided.front(), two_sided.back()]
+                    .iter()
+                    .any(|side| matches!(side, Bsdf::Diffuse(_))),
+                _ => false,
+            }),
         }
     }
 }

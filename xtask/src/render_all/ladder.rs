@@ -55,6 +55,7 @@ impl SceneTransport {
             light_tracing: false,
             direct_samples: self.direct_samples,
             skip_null_vertices: self.skip_null_vertices,
+            path_reuse: None,
         }
     }
 }
@@ -191,6 +192,7 @@ mod tests {
             has_environment: false,
             has_glossy_bsdfs: false,
             has_null_lobes: false,
+            has_diffuse_bsdfs: true,
         }
     }
 

@@ -5,7 +5,7 @@
 
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
-use integrators::{LightSelectionMode, Mis, PathSettings, RussianRoulette};
+use integrators::{LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette};
 use render::driver::{RenderOptions, RenderOutput};
 use render::film::Film;
 use render::session::{film_filter, render_scene};
@@ -152,6 +152,7 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
         light_tracing: false,
         direct_samples: None,
         skip_null_vertices: false,
+        path_reuse: None,
     }
 }
 
@@ -239,6 +240,13 @@ pub fn configurations(base: PathSettings) -> Vec<Configuration> {
             settings: base,
             sampler: SamplerKind::Sobol,
         },
+        independent(
+            "path reuse 4x4",
+            PathSettings {
+                path_reuse: Some(PathReuse { block: 4 }),
+                ..base
+            },
+        ),
     ]
 }
 
@@ -285,6 +293,18 @@ pub enum Target<'a> {
 /// (a rare hit on a small light) make a block's mean closer to normal. The threshold is two-sided
 /// for a family-wise `alpha` with Šidák correction over all block-channels.
 pub fn z_test(a: &Film, b: Target<'_>, block: u32, alpha: f64) -> ZTest {
+    z_test_with(a, b, block, alpha, false)
+}
+
+/// [`z_test`] for a film `a` whose pixels within a block may be correlated (path reuse shares
+/// paths between the pixels of its blocks): its block's variance is bounded by (Σ √var_a)²,
+/// which holds whatever the correlation, so the test stays valid and only loses power.
+pub fn z_test_correlated(a: &Film, b: Target<'_>, block: u32, alpha: f64) -> ZTest {
+    z_test_with(a, b, block, alpha, true)
+}
+
+/// [`z_test`], with `a`'s block variance bounded as [`z_test_correlated`] says when `correlated`.
+fn z_test_with(a: &Film, b: Target<'_>, block: u32, alpha: f64, correlated: bool) -> ZTest {
     let blocks = UVec2::new(a.width() / block, a.height() / block);
     let tests = (blocks.x * blocks.y * 3) as usize;
     let threshold = two_sided_threshold(sidak_alpha(alpha, tests));
@@ -301,6 +321,7 @@ pub fn z_test(a: &Film, b: Target<'_>, block: u32, alpha: f64) -> ZTest {
             let origin = UVec2::new(bx, by) * block;
             for c in 0..3 {
                 let (mut difference, mut variance, mut magnitude) = (0.0, 0.0, 0.0_f64);
+                let mut deviation_a = 0.0_f64;
                 for dy in 0..block {
                     for dx in 0..block {
                         let pixel = origin + UVec2::new(dx, dy);
@@ -311,10 +332,17 @@ pub fn z_test(a: &Film, b: Target<'_>, block: u32, alpha: f64) -> ZTest {
                             Target::Exact(value) => (value(pixel)[c], 0.0),
                         };
                         difference += f64::from(a.pixel_value(pixel)[c]) - f64::from(mean_b);
-                        variance += f64::from(a.pixel_variance(pixel)[c]) + f64::from(var_b);
+                        let var_a = f64::from(a.pixel_variance(pixel)[c]);
+                        if correlated {
+                            deviation_a += var_a.sqrt();
+                            variance += f64::from(var_b);
+                        } else {
+                            variance += var_a + f64::from(var_b);
+                        }
                         magnitude = magnitude.max(f64::from(mean_b).abs());
                     }
                 }
+                variance += deviation_a * deviation_a;
                 let rounding = 1e-5 * magnitude * f64::from(block * block);
                 let z = difference.abs() / (variance + rounding * rounding).sqrt().max(1e-30);
                 if z <= threshold {

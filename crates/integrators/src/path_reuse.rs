@@ -1,0 +1,330 @@
+//! Path reuse (Bekaert, Sbert and Halton, "Accelerating Path Tracing by Re-Using Paths", EGWR
+//! 2002): the camera paths of a small block of pixels share their second vertices.
+//!
+//! A pixel's indirect light through its first vertex x is ∫ f(x → y) G(x, y) L_r(y → x) dA(y)
+//! over the surfaces y that x sees, where L_r is the radiance y reflects (its emission is left
+//! to x's own path, with its usual MIS weight). Each path j of the block sampled one such y_j
+//! from its own first vertex x_j with density p_j(y) = pdf_bsdf(x_j → y) · cos θ_y / d² ·
+//! V(x_j, y) per unit area, and estimated L_r(y_j) by the rest of its walk. Where y_j is
+//! diffuse, the radiance it reflects is the same in every direction of its side, so that
+//! estimate serves every first vertex on the same side of y_j. Every path i of the block then
+//! counts every shared y_j with the balance heuristic over the block's first vertices,
+//!
+//! ```text
+//! Σ_j  f(x_i → y_j) G(x_i, y_j) V(x_i, y_j) L_r(y_j)  /  Σ_k p_k(y_j),
+//! ```
+//!
+//! the sums over the paths whose first vertex is diffuse and on the same side of y_j as x_j
+//! (by its geometric and by its shading normal). The weights p_k / Σ p_k sum to one over the
+//! strategies that can produce y wherever path i's own can, so each pixel's estimate stays
+//! unbiased; where y_j is not diffuse, or was not reached, path j's estimate stays its own. A
+//! block of n paths traces up to n(n − 1) more shadow rays (x_k to y_j, k ≠ j, one ray serving
+//! both the weight and the contribution) and gives each pixel n estimates of its indirect
+//! light. With the balance heuristic a connection never weighs more than its path's own BSDF
+//! sample would (f G / Σ p_k ≤ f G / p_i = f cos / pdf, the albedo for cosine sampling), so
+//! short connections into corners make no fireflies. The pixels' errors are correlated within a
+//! block (each pixel's own error is what shrinks), which shows as blocky noise at low sample
+//! counts.
+
+use crate::{RayTally, SurfaceHit, World};
+use glam::Vec3;
+use materials::{Bsdf, Diffuse};
+use sampling::Frame;
+
+/// The most paths [`combine`] takes at once.
+pub const MAX_BLOCK_PATHS: usize = 16;
+
+/// A path's first vertex, kept where it is diffuse, to be connected to the block's second
+/// vertices.
+#[derive(Clone, Copy, Debug)]
+pub struct FirstVertex {
+    /// Position (world units).
+    p: Vec3,
+    /// Unit geometric normal.
+    ng: Vec3,
+    /// The shading frame its BSDF sees.
+    frame: Frame,
+    /// Direction to the camera, in `frame`.
+    wo: Vec3,
+    /// Its BSDF.
+    diffuse: Diffuse,
+}
+
+impl FirstVertex {
+    /// The first vertex at `surface`, seen from `wo` (local frame), if its BSDF is diffuse and
+    /// reflects something: a black one never continues its path, so it samples no second vertex.
+    pub(crate) fn at(surface: &SurfaceHit<'_>, wo: Vec3) -> Option<Self> {
+        match surface.bsdf {
+            Bsdf::Diffuse(diffuse) if diffuse.reflectance() != Vec3::ZERO => Some(Self {
+                p: surface.hit.p,
+                ng: surface.hit.ng,
+                frame: surface.frame,
+                wo,
+                diffuse: *diffuse,
+            }),
+            _ => None,
+        }
+    }
+
+    /// Towards the surface point `y`: f · |cos θ_x| · |cos θ_y| / d² (RGB, per unit area of y)
+    /// and the density per unit area with which this vertex's BSDF sampling reaches `y` if
+    /// nothing is in between; `None` where either is zero.
+    fn towards(&self, y: &SecondVertex) -> Option<(Vec3, f32)> {
+        let to_y = y.p - self.p;
+        let distance_squared = to_y.length_squared();
+        if distance_squared == 0.0 {
+            return None;
+        }
+        let dir = to_y / distance_squared.sqrt();
+        let wi = self.frame.to_local(dir);
+        let (f, pdf_solid_angle) = self.diffuse.eval_with_pdf(self.wo, wi);
+        let area_per_solid_angle = y.ng.dot(dir).abs() / distance_squared;
+        let pdf_area = pdf_solid_angle * area_per_solid_angle;
+        (pdf_area > 0.0 && pdf_area.is_finite())
+            .then(|| (f * (wi.z.abs() * area_per_solid_angle), pdf_area))
+    }
+}
+
+/// A path's second vertex, kept where it is diffuse, with the radiance it reflects towards the
+/// path's first vertex (W m⁻² sr⁻¹, RGB; its own emission not included).
+#[derive(Clone, Copy, Debug)]
+pub struct SecondVertex {
+    /// Position (world units).
+    p: Vec3,
+    /// Unit geometric normal.
+    ng: Vec3,
+    /// Unit shading normal.
+    ns: Vec3,
+    /// The estimate of the radiance reflected towards the path's first vertex.
+    pub(crate) reflected: Vec3,
+}
+
+impl SecondVertex {
+    /// The second vertex at `surface` if its BSDF is diffuse (the radiance it reflects is then
+    /// the same towards every point on one side of it); `reflected` is filled in later.
+    pub(crate) fn at(surface: &SurfaceHit<'_>) -> Option<Self> {
+        matches!(surface.bsdf, Bsdf::Diffuse(_)).then_some(Self {
+            p: surface.hit.p,
+            ng: surface.hit.ng,
+            ns: surface.hit.ns,
+            reflected: Vec3::ZERO,
+        })
+    }
+
+    /// On which side of this vertex `x` lies, by its geometric and by its shading normal: the
+    /// radiance it reflects towards points with the same sides is the same (a two-sided
+    /// material's side and a diffuse lobe's hemisphere follow the shading normal, ray offsets
+    /// the geometric one).
+    fn side_of(&self, x: Vec3) -> (bool, bool) {
+        let to_x = x - self.p;
+        (self.ng.dot(to_x) > 0.0, self.ns.dot(to_x) > 0.0)
+    }
+}
+
+/// One camera path's estimate, split for path reuse by
+/// [`crate::PathIntegrator::radiance_reusable`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ReusablePath {
+    /// The estimate (W m⁻² sr⁻¹, RGB) without what the second vertex reflects towards the
+    /// first; the whole estimate when `second` is `None`.
+    pub own: Vec3,
+    /// The first vertex, where it is diffuse.
+    pub first: Option<FirstVertex>,
+    /// The second vertex, where both it and the first are diffuse.
+    pub second: Option<SecondVertex>,
+}
+
+/// The estimates of `paths` (one camera sample each, of nearby pixels) with their second
+/// vertices shared as the module documentation says, written to `radiance` (same length; W
+/// m⁻² sr⁻¹, RGB). Traces a shadow ray from each first vertex to each other path's second
+/// vertex on its side. Alone, a path gets its unsplit estimate back (up to rounding).
+///
+/// # Panics
+/// If `radiance` is shorter than `paths` or `paths` has more than [`MAX_BLOCK_PATHS`] entries.
+pub fn combine(
+    world: &World,
+    paths: &[ReusablePath],
+    tally: &mut impl RayTally,
+    radiance: &mut [Vec3],
+) {
+    assert!(paths.len() <= MAX_BLOCK_PATHS, "too many paths to combine");
+    for (out, path) in radiance.iter_mut().zip(paths) {
+        *out = path.own;
+    }
+    for (j, path) in paths.iter().enumerate() {
+        let (Some(x_j), Some(y)) = (&path.first, &path.second) else {
+            continue;
+        };
+        let side = y.side_of(x_j.p);
+        let mut connections = [None; MAX_BLOCK_PATHS];
+        let mut total_pdf_area = 0.0;
+        for (k, other) in paths.iter().enumerate() {
+            let Some(x_k) = &other.first else {
+                continue;
+            };
+            if y.side_of(x_k.p) != side {
+                continue;
+            }
+            let Some((f_g, pdf_area)) = x_k.towards(y) else {
+                continue;
+            };
+            // Path j's own second vertex is what its ray found: visible.
+            if k != j && !world.unoccluded(x_k.p, x_k.ng, y.p, y.ng, tally) {
+                continue;
+            }
+            connections[k] = Some(f_g);
+            total_pdf_area += pdf_area;
+        }
+        if total_pdf_area > 0.0 {
+            for (out, f_g) in radiance.iter_mut().zip(connections) {
+                if let Some(f_g) = f_g {
+                    *out += f_g * y.reflected / total_pdf_area;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::RayCounters;
+    use geometry::{Accel, Shape, Sphere};
+    use glam::Mat3;
+    use std::f32::consts::FRAC_1_PI;
+
+    const ALBEDO: Vec3 = Vec3::new(0.8, 0.5, 0.2);
+    const REFLECTED: Vec3 = Vec3::new(2.0, 3.0, 4.0);
+
+    /// A world of `spheres` (diffuse, no lights) for the connections' shadow rays.
+    fn world(spheres: &[(Vec3, f32)]) -> World {
+        let shapes = spheres
+            .iter()
+            .map(|&(center, radius)| {
+                Shape::Sphere(Sphere {
+                    center,
+                    radius,
+                    flip_normals: false,
+                    to_local: Mat3::IDENTITY,
+                })
+            })
+            .collect::<Vec<_>>();
+        let count = shapes.len();
+        World::new(
+            Accel::new(shapes),
+            vec![Bsdf::Diffuse(Diffuse::new(Vec3::splat(0.5)))],
+            vec![0; count],
+            vec![None; count],
+            Vec::new(),
+            Vec::new(),
+        )
+        .expect("valid world")
+    }
+
+    /// A path whose first vertex is at `x` on the floor (normal +z) seen from straight above,
+    /// and whose second vertex, if any, is at `y` with normal `n`.
+    fn path(own: f32, x: Vec3, second: Option<(Vec3, Vec3)>) -> ReusablePath {
+        path_from(own, (x, Vec3::Z), second)
+    }
+
+    /// [`path`] with the first vertex's normal given too (seen along it).
+    fn path_from(own: f32, x: (Vec3, Vec3), second: Option<(Vec3, Vec3)>) -> ReusablePath {
+        ReusablePath {
+            own: Vec3::splat(own),
+            first: Some(FirstVertex {
+                p: x.0,
+                ng: x.1,
+                frame: Frame::from_normal(x.1),
+                wo: Vec3::Z,
+                diffuse: Diffuse::new(ALBEDO),
+            }),
+            second: second.map(|(p, n)| SecondVertex {
+                p,
+                ng: n,
+                ns: n,
+                reflected: REFLECTED,
+            }),
+        }
+    }
+
+    /// f · cos θx · cos θy / d² and the area density, from first vertex `x` (normal +z) to `y`
+    /// (normal `n`), written out independently of [`FirstVertex::towards`].
+    fn by_hand(x: Vec3, y: Vec3, n: Vec3) -> (Vec3, f32) {
+        let d = y - x;
+        let (cos_x, cos_y) = (d.z / d.length(), n.dot(-d).abs() / d.length());
+        let g = cos_x * cos_y / d.length_squared();
+        (
+            ALBEDO * FRAC_1_PI * g,
+            cos_x * FRAC_1_PI * cos_y / d.length_squared(),
+        )
+    }
+
+    fn combined(world: &World, paths: &[ReusablePath]) -> (Vec<Vec3>, RayCounters) {
+        let mut radiance = vec![Vec3::ZERO; paths.len()];
+        let mut tally = RayCounters::default();
+        combine(world, paths, &mut tally, &mut radiance);
+        (radiance, tally)
+    }
+
+    fn assert_close(actual: Vec3, expected: Vec3, what: &str) {
+        assert!(
+            (actual - expected).abs().max_element() <= 1e-5 * expected.abs().max_element(),
+            "{what}: {actual} against {expected}"
+        );
+    }
+
+    #[test]
+    fn a_path_alone_gets_its_own_estimate_back() {
+        // Cosine sampling's weight f cos / pdf is the albedo, so the path's own second vertex
+        // adds albedo × reflected, as the unsplit walk would.
+        let (y, n) = (Vec3::new(0.3, -0.2, 1.5), Vec3::NEG_Z);
+        let (radiance, tally) = combined(&world(&[]), &[path(1.0, Vec3::ZERO, Some((y, n)))]);
+        assert_close(radiance[0], Vec3::ONE + ALBEDO * REFLECTED, "alone");
+        assert_eq!(
+            tally.shadow_rays, 0,
+            "its own second vertex needs no shadow ray"
+        );
+    }
+
+    #[test]
+    fn shared_second_vertices_are_weighted_by_the_balance_heuristic() {
+        let (x0, x1) = (Vec3::ZERO, Vec3::new(0.5, 0.0, 0.0));
+        let (y0, y1) = (Vec3::new(0.2, 0.1, 1.0), Vec3::new(-0.4, 0.3, 2.0));
+        let n = Vec3::NEG_Z;
+        let paths = [path(0.0, x0, Some((y0, n))), path(0.0, x1, Some((y1, n)))];
+        let (radiance, tally) = combined(&world(&[]), &paths);
+        for (i, x) in [x0, x1].into_iter().enumerate() {
+            let expected: Vec3 = [y0, y1]
+                .into_iter()
+                .map(|y| {
+                    let (f_g, _) = by_hand(x, y, n);
+                    let total = by_hand(x0, y, n).1 + by_hand(x1, y, n).1;
+                    f_g * REFLECTED / total
+                })
+                .sum();
+            assert_close(radiance[i], expected, &format!("path {i}"));
+        }
+        assert_eq!(tally.shadow_rays, 2, "one shadow ray per shared connection");
+    }
+
+    #[test]
+    fn occluded_and_other_side_first_vertices_neither_share_nor_weigh() {
+        // Path 1's first vertex is hidden from path 0's second vertex by a sphere, and path 2's
+        // faces it from behind its plane (a ceiling above a card lit from below): path 0 keeps
+        // its own estimate whole, and paths 1 and 2 get nothing from it.
+        let (x0, y0, n) = (Vec3::ZERO, Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z);
+        let x1 = Vec3::new(2.0, 0.0, 0.0);
+        let x2 = (Vec3::new(0.3, 0.0, 1.5), Vec3::NEG_Z);
+        let blocker = (Vec3::new(1.0, 0.0, 0.5), 0.2);
+        let paths = [
+            path(0.0, x0, Some((y0, n))),
+            path(0.0, x1, None),
+            path_from(0.0, x2, None),
+        ];
+        let (radiance, tally) = combined(&world(&[blocker]), &paths);
+        assert_close(radiance[0], ALBEDO * REFLECTED, "the path that found it");
+        assert_eq!(radiance[1], Vec3::ZERO, "occluded");
+        assert_eq!(radiance[2], Vec3::ZERO, "other side");
+        assert_eq!(tally.shadow_rays, 1, "no shadow ray to the other side");
+    }
+}

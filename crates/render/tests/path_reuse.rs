@@ -1,0 +1,78 @@
+//! Path reuse's split of a path: the same path, with the radiance its second vertex reflects
+//! kept apart, gives back the whole estimate when combined alone. The unbiasedness of shared
+//! paths is checked with every other configuration in `unbiased.rs` and `stiff.rs`.
+
+mod common;
+
+use common::{load_file, mis_power, scenes_dir};
+use glam::{UVec2, Vec2, Vec3};
+use integrators::path_reuse::combine;
+use integrators::{
+    BsdfSlot, PathIntegrator, PathReuse, PathSettings, RayCounters, RussianRoulette,
+};
+use sampling::Sampler;
+use sampling::sampler::IndependentSampler;
+
+const SEED: u32 = 3;
+
+#[test]
+fn a_path_combined_alone_is_the_unsplit_path() {
+    let scene = load_file(&scenes_dir().join("cbox-glass.xml"), &[], 16, 16);
+    let world = &scene.world;
+    for roulette in [None, Some(RussianRoulette { start_depth: 2 })] {
+        let plain = PathSettings {
+            russian_roulette: roulette,
+            ..mis_power(Some(8), false)
+        };
+        let reusing = PathSettings {
+            path_reuse: Some(PathReuse { block: 4 }),
+            ..plain
+        };
+        let (plain, reusing) = (
+            PathIntegrator::new(world, plain),
+            PathIntegrator::new(world, reusing),
+        );
+        let mut slot = BsdfSlot::default();
+        let mut tally = RayCounters::default();
+        let mut split = 0;
+        for index in 0..64 {
+            for y in 0..16 {
+                for x in 0..16 {
+                    let pixel = UVec2::new(x, y);
+                    let mut sampler = IndependentSampler::new(SEED, 64);
+                    let ray = |sampler: &mut IndependentSampler| {
+                        sampler.start_pixel_sample(pixel, index);
+                        let film = pixel.as_vec2() + sampler.next_2d();
+                        scene.camera.generate_ray(film, Vec2::ZERO)
+                    };
+                    let whole = plain.radiance(
+                        world,
+                        ray(&mut sampler),
+                        &mut sampler,
+                        &mut tally,
+                        &mut slot,
+                    );
+                    let path = reusing.radiance_reusable(
+                        world,
+                        ray(&mut sampler),
+                        &mut sampler,
+                        &mut tally,
+                        &mut slot,
+                    );
+                    split += usize::from(path.second.is_some());
+                    let mut combined = [Vec3::ZERO];
+                    combine(world, &[path], &mut tally, &mut combined);
+                    let tolerance = 1e-4 * whole.max_element().max(1e-3);
+                    assert!(
+                        (combined[0] - whole).abs().max_element() <= tolerance,
+                        "pixel {pixel} sample {index} seed {SEED}, roulette {roulette:?}: \
+                         {} split and combined against {whole}",
+                        combined[0]
+                    );
+                }
+            }
+        }
+        // Most camera rays of the box meet a diffuse wall, then another.
+        assert!(split > 16 * 16 * 64 / 2, "{split} paths split");
+    }
+}
