@@ -56,6 +56,15 @@ impl Ray {
         let to_target = target_p - p;
         let origin = offset_ray_origin(p, ng, to_target);
         let end = offset_ray_origin(target_p, target_ng, -to_target);
+        Self::between(origin, end, to_target, ng)
+    }
+
+    /// [`Ray::spawn_to`] from its two moved points: the shadow ray from `origin` to `end` (each
+    /// already moved off its surface by [`offset_ray_origin`], towards the other) and its
+    /// `t_max`, where `to_target` is the direction between the unmoved points. When the moved
+    /// points coincide or pass each other, the ray has direction `fallback` and `t_max = 0`.
+    #[inline]
+    pub fn between(origin: Vec3, end: Vec3, to_target: Vec3, fallback: Vec3) -> (Self, f32) {
         let d = end - origin;
         let distance = d.length();
         if distance > 0.0 && distance.is_finite() && d.dot(to_target) > 0.0 {
@@ -67,7 +76,13 @@ impl Ray {
                 distance,
             )
         } else {
-            (Self { origin, dir: ng }, 0.0)
+            (
+                Self {
+                    origin,
+                    dir: fallback,
+                },
+                0.0,
+            )
         }
     }
 }

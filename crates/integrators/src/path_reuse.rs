@@ -27,6 +27,7 @@
 //! counts.
 
 use crate::{RayTally, SurfaceHit, World};
+use geometry::{Ray, offset_ray_origin};
 use glam::Vec3;
 use materials::{Bsdf, Diffuse};
 use sampling::Frame;
@@ -48,6 +49,39 @@ pub struct FirstVertex {
     wo: Vec3,
     /// Its BSDF.
     diffuse: Diffuse,
+    /// Where its shadow rays start ([`Offsets`]).
+    offsets: Offsets,
+}
+
+/// A surface point moved off its surface to either side, as [`offset_ray_origin`] moves it for
+/// a ray leaving or reaching it (which depends on the direction only through the side): computed
+/// once per vertex rather than once per connection.
+#[derive(Clone, Copy, Debug)]
+struct Offsets {
+    /// Unit geometric normal.
+    ng: Vec3,
+    /// The point moved to the side `ng` points to, and to the other.
+    front: Vec3,
+    back: Vec3,
+}
+
+impl Offsets {
+    fn of(p: Vec3, ng: Vec3) -> Self {
+        Self {
+            ng,
+            front: offset_ray_origin(p, ng, ng),
+            back: offset_ray_origin(p, ng, -ng),
+        }
+    }
+
+    /// The point moved as [`offset_ray_origin`] moves it for direction `dir`.
+    fn towards(&self, dir: Vec3) -> Vec3 {
+        if self.ng.dot(dir) < 0.0 {
+            self.back
+        } else {
+            self.front
+        }
+    }
 }
 
 impl FirstVertex {
@@ -61,6 +95,7 @@ impl FirstVertex {
                 frame: surface.frame,
                 wo,
                 diffuse: *diffuse,
+                offsets: Offsets::of(surface.hit.p, surface.hit.ng),
             }),
             _ => None,
         }
@@ -83,6 +118,15 @@ impl FirstVertex {
         (pdf_area > 0.0 && pdf_area.is_finite())
             .then(|| (f * (wi.z.abs() * area_per_solid_angle), pdf_area))
     }
+
+    /// True when nothing blocks the segment from this vertex to `y`, as [`World::unoccluded`]
+    /// tests it (both ends moved off their surfaces), told to `tally` as one shadow ray.
+    fn sees(&self, y: &SecondVertex, world: &World, tally: &mut impl RayTally) -> bool {
+        let to_y = y.p - self.p;
+        let (origin, end) = (self.offsets.towards(to_y), y.offsets.towards(-to_y));
+        let (ray, t_max) = Ray::between(origin, end, to_y, self.ng);
+        world.ray_unoccluded(&ray, t_max, tally)
+    }
 }
 
 /// A path's second vertex, kept where it is diffuse, with the radiance it reflects towards the
@@ -95,6 +139,8 @@ pub struct SecondVertex {
     ng: Vec3,
     /// Unit shading normal.
     ns: Vec3,
+    /// Where shadow rays to it end ([`Offsets`]).
+    offsets: Offsets,
     /// The estimate of the radiance reflected towards the path's first vertex.
     pub(crate) reflected: Vec3,
 }
@@ -107,6 +153,7 @@ impl SecondVertex {
             p: surface.hit.p,
             ng: surface.hit.ng,
             ns: surface.hit.ns,
+            offsets: Offsets::of(surface.hit.p, surface.hit.ng),
             reflected: Vec3::ZERO,
         })
     }
@@ -169,7 +216,7 @@ pub fn combine(
                 continue;
             };
             // Path j's own second vertex is what its ray found: visible.
-            if k != j && !world.unoccluded(x_k.p, x_k.ng, y.p, y.ng, tally) {
+            if k != j && !x_k.sees(y, world, tally) {
                 continue;
             }
             connections[k] = Some(f_g);
@@ -237,11 +284,13 @@ mod tests {
                 frame: Frame::from_normal(x.1),
                 wo: Vec3::Z,
                 diffuse: Diffuse::new(ALBEDO),
+                offsets: Offsets::of(x.0, x.1),
             }),
             second: second.map(|(p, n)| SecondVertex {
                 p,
                 ng: n,
                 ns: n,
+                offsets: Offsets::of(p, n),
                 reflected: REFLECTED,
             }),
         }
@@ -326,5 +375,29 @@ mod tests {
         assert_eq!(radiance[1], Vec3::ZERO, "occluded");
         assert_eq!(radiance[2], Vec3::ZERO, "other side");
         assert_eq!(tally.shadow_rays, 1, "no shadow ray to the other side");
+    }
+
+    #[test]
+    fn precomputed_offsets_are_the_ray_offsets_for_every_direction() {
+        let points = [
+            Vec3::new(0.3, -2.0, 5.0),
+            Vec3::new(1e4, 0.01, -3e3),
+            Vec3::ZERO,
+        ];
+        let normals = [
+            Vec3::Z,
+            Vec3::new(0.0, 0.6, -0.8),
+            Vec3::new(-0.48, 0.6, 0.64),
+        ];
+        for (p, ng) in points.into_iter().zip(normals) {
+            let offsets = Offsets::of(p, ng);
+            for dir in [ng, -ng, Vec3::X, Vec3::NEG_Y, ng.any_orthonormal_vector()] {
+                assert_eq!(
+                    offsets.towards(dir),
+                    offset_ray_origin(p, ng, dir),
+                    "{p} {ng} {dir}"
+                );
+            }
+        }
     }
 }

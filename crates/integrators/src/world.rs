@@ -415,6 +415,14 @@ impl World {
         }
     }
 
+    /// True when nothing blocks `ray` for `0 < t < t_max` (a shadow ray from [`Ray::between`]),
+    /// told to `tally` as one shadow ray.
+    #[inline]
+    pub fn ray_unoccluded(&self, ray: &Ray, t_max: f32, tally: &mut impl RayTally) -> bool {
+        tally.shadow_ray(ray, t_max);
+        !self.accel.occluded(ray, t_max)
+    }
+
     /// True when nothing blocks the segment from the surface point `p` (geometric normal `ng`)
     /// to `p_light` (normal `n_light`, zero for points), told to `tally` as one shadow ray.
     #[inline]
