@@ -3,7 +3,7 @@
 //! ```text
 //! strata render SCENE.xml --out OUT.exr [--spp N] [--time SECONDS]
 //!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise|sobol]
-//!               [--rr on|off] [--adaptive] [--light-tracing] [--path-reuse [2|4]] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
+//!               [--rr on|off] [--adaptive] [--light-tracing] [--path-reuse [off|2|4]] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
 //!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
 //!               [-D NAME=VALUE ...]
 //! strata diff A.exr B.exr
@@ -131,10 +131,11 @@ pub struct RenderArgs {
     pub light_tracing: bool,
     /// Path reuse: connect each pixel's first path vertex to the second vertices of the other
     /// paths of its BLOCK × BLOCK pixel block (2 or 4; 4 when no value is given), where both
-    /// are diffuse (not with light tracing). `auto` turns it on where it pays.
+    /// are diffuse (not with light tracing). `auto` turns 4 × 4 blocks on where they pay;
+    /// `off` keeps it off.
     #[arg(long, value_name = "BLOCK", num_args = 0..=1, default_missing_value = "4",
           value_parser = reuse_block)]
-    pub path_reuse: Option<u32>,
+    pub path_reuse: Option<ReuseFlag>,
     /// Maximum number of path vertices after the camera, as in Mitsuba (1: emitters seen
     /// directly; 2: adds direct lighting).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
@@ -222,12 +223,22 @@ fn parse_define(text: &str) -> Result<(String, String), String> {
     Ok((name.to_string(), value.to_string()))
 }
 
-/// A path-reuse block edge: 2 or 4 pixels, which divide every tile size.
-fn reuse_block(value: &str) -> Result<u32, String> {
+/// What `--path-reuse` asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReuseFlag {
+    /// No path reuse, even with `auto`.
+    Off,
+    /// Blocks of this edge in pixels (2 or 4, which divide every tile size).
+    Block(u32),
+}
+
+/// Parses a `--path-reuse` value: `off`, 2 or 4.
+fn reuse_block(value: &str) -> Result<ReuseFlag, String> {
     match value {
-        "2" => Ok(2),
-        "4" => Ok(4),
-        other => Err(format!("block edge {other} is not 2 or 4")),
+        "off" => Ok(ReuseFlag::Off),
+        "2" => Ok(ReuseFlag::Block(2)),
+        "4" => Ok(ReuseFlag::Block(4)),
+        other => Err(format!("{other} is not off, 2 or 4")),
     }
 }
 
@@ -251,20 +262,19 @@ mod tests {
     }
 
     #[test]
-    fn path_reuse_takes_an_optional_block_edge_of_2_or_4() {
+    fn path_reuse_takes_off_or_an_optional_block_edge_of_2_or_4() {
         fn with<'a>(extra: &[&'a str]) -> Vec<&'a str> {
             [&["render", "s.xml", "--out", "o.exr"][..], extra].concat()
         }
-        assert_eq!(render_args(&with(&[])).path_reuse, None);
-        assert_eq!(render_args(&with(&["--path-reuse"])).path_reuse, Some(4));
-        assert_eq!(
-            render_args(&with(&["--path-reuse", "2"])).path_reuse,
-            Some(2)
-        );
-        assert_eq!(render_args(&with(&["--path-reuse=4"])).path_reuse, Some(4));
+        let reuse = |extra: &[&str]| render_args(&with(extra)).path_reuse;
+        assert_eq!(reuse(&[]), None);
+        assert_eq!(reuse(&["--path-reuse"]), Some(ReuseFlag::Block(4)));
+        assert_eq!(reuse(&["--path-reuse", "2"]), Some(ReuseFlag::Block(2)));
+        assert_eq!(reuse(&["--path-reuse=4"]), Some(ReuseFlag::Block(4)));
+        assert_eq!(reuse(&["--path-reuse", "off"]), Some(ReuseFlag::Off));
         let refused = parse(&with(&["--path-reuse", "3"])).unwrap_err();
         assert!(
-            refused.to_string().contains("block edge 3 is not 2 or 4"),
+            refused.to_string().contains("3 is not off, 2 or 4"),
             "{refused}"
         );
     }

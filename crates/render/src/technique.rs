@@ -1,7 +1,9 @@
 //! Which light transport, sampler and budget a `strata render` runs with: the command line's
 //! flags on top of the scene file's settings, and the `auto` choice from the scene's features.
 
-use crate::cli::{Cli, Command, IntegratorPreset, RenderArgs, SamplerKind as SamplerFlag};
+use crate::cli::{
+    Cli, Command, IntegratorPreset, RenderArgs, ReuseFlag, SamplerKind as SamplerFlag,
+};
 use crate::driver::RenderBudget;
 use clap::Parser;
 use integrators::reference::ReferenceSettings;
@@ -20,7 +22,7 @@ pub const RIS_CANDIDATES: u32 = 4;
 /// Block edge of the path reuse `auto` turns on: on the Cornell box 4 × 4 blocks cut the relMSE
 /// at equal time 2.6× and 2 × 2 blocks 1.9× (2026-12-03); where reuse does not pay, the larger
 /// blocks lose more (`manylights`: 1.2× against 1.02× higher relMSE).
-const AUTO_REUSE_BLOCK: u32 = 4;
+pub const AUTO_REUSE_BLOCK: u32 = 4;
 
 /// With at least this many lights, `auto` selects lights by RIS rather than by power.
 pub const AUTO_RIS_MIN_LIGHTS: usize = 16;
@@ -166,9 +168,12 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             )
             && !settings.hide_emitters;
         let auto_reuses = auto_traces && path_reuse_pays(features, settings.max_depth);
-        settings.path_reuse = args
-            .path_reuse
-            .or(auto_reuses.then_some(AUTO_REUSE_BLOCK))
+        let block = match args.path_reuse {
+            Some(ReuseFlag::Block(block)) => Some(block),
+            Some(ReuseFlag::Off) => None,
+            None => auto_reuses.then_some(AUTO_REUSE_BLOCK),
+        };
+        settings.path_reuse = block
             .map(|block| PathReuse { block })
             .filter(|_| settings.reuse_applies());
     }

@@ -10,6 +10,7 @@ use integrators::path_reuse::combine;
 use integrators::{
     BsdfSlot, PathIntegrator, PathReuse, PathSettings, RayCounters, RussianRoulette,
 };
+use render::technique::{Transport, plan_from_flags};
 use sampling::Sampler;
 use sampling::sampler::IndependentSampler;
 
@@ -75,4 +76,28 @@ fn a_path_combined_alone_is_the_unsplit_path() {
         // Most camera rays of the box meet a diffuse wall, then another.
         assert!(split > 16 * 16 * 64 / 2, "{split} paths split");
     }
+}
+
+#[test]
+fn auto_reuses_paths_on_the_cornell_box_unless_told_off() {
+    let scene = load_file(&scenes_dir().join("cbox.xml"), &[], 16, 16);
+    let block = |flags: &[&str]| match plan_from_flags(&scene, flags).unwrap().transport {
+        Transport::Path(settings) => settings.path_reuse.map(|r| r.block),
+        Transport::Reference(_) => panic!("{flags:?}: the reference integrator"),
+    };
+    assert_eq!(block(&[]), Some(4));
+    assert_eq!(block(&["--path-reuse", "2"]), Some(2));
+    assert_eq!(block(&["--path-reuse", "off"]), None);
+    assert_eq!(block(&["--integrator", "mis"]), None);
+    assert_eq!(block(&["--integrator", "mis", "--path-reuse"]), Some(4));
+    // A path of two vertices has nothing to share.
+    assert_eq!(block(&["--path-reuse", "--max-depth", "2"]), None);
+    let glass = load_file(&scenes_dir().join("cbox-glass.xml"), &[], 16, 16);
+    let Transport::Path(settings) = plan_from_flags(&glass, &[]).unwrap().transport else {
+        panic!("auto is a path configuration");
+    };
+    assert!(
+        settings.light_tracing && settings.path_reuse.is_none(),
+        "{settings:?}"
+    );
 }

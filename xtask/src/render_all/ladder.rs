@@ -2,8 +2,10 @@
 //! rung, plus `auto`; rungs that cannot apply to the scene are left out.
 
 use integrators::reference::ReferenceSettings;
-use integrators::{DirectSamples, LightSelectionMode, Mis, PathSettings, RussianRoulette};
-use render::technique::{RIS_CANDIDATES, Transport, auto_settings};
+use integrators::{
+    DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
+};
+use render::technique::{AUTO_REUSE_BLOCK, RIS_CANDIDATES, Transport, auto_settings};
 use sampling::sampler::SamplerKind;
 use scene::SceneFeatures;
 
@@ -38,6 +40,9 @@ pub struct SceneTransport {
     pub direct_samples: Option<DirectSamples>,
     /// Whether a pass through a null lobe is not a path vertex (Mitsuba's `volpath`).
     pub skip_null_vertices: bool,
+    /// Whether `auto` reuses paths where nothing excludes it
+    /// (`render::technique::path_reuse_pays`).
+    pub path_reuse: bool,
 }
 
 impl SceneTransport {
@@ -156,14 +161,33 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
             ..rung("+light-tracing", traced, SamplerKind::Sobol)
         });
     }
-    let auto = PathSettings {
-        russian_roulette: Some(transport.roulette),
-        light_tracing: transport.light_tracing,
-        ..mis
+    let reuse = Some(PathReuse {
+        block: AUTO_REUSE_BLOCK,
+    });
+    let reusing = PathSettings {
+        path_reuse: reuse,
+        ..roulette
     };
+    if transport.path_reuse && !transport.light_tracing && reusing.reuse_applies() {
+        rungs.push(Configuration {
+            adaptive: true,
+            ..rung("+path-reuse", reusing, SamplerKind::Sobol)
+        });
+    }
+    let mut auto = auto_settings(
+        PathSettings {
+            russian_roulette: Some(transport.roulette),
+            light_tracing: transport.light_tracing,
+            ..mis
+        },
+        features,
+    );
+    if transport.path_reuse && auto.reuse_applies() {
+        auto.path_reuse = reuse;
+    }
     rungs.push(Configuration {
         adaptive: true,
-        ..rung("auto", auto_settings(auto, features), SamplerKind::Sobol)
+        ..rung("auto", auto, SamplerKind::Sobol)
     });
     rungs
 }
@@ -180,6 +204,7 @@ mod tests {
             light_tracing: false,
             direct_samples: None,
             skip_null_vertices: false,
+            path_reuse: false,
         }
     }
 
@@ -256,6 +281,36 @@ mod tests {
                 panic!("auto is a path configuration");
             };
             assert_eq!(settings.light_tracing, rungs.len() == with.len());
+        }
+    }
+
+    #[test]
+    fn path_reuse_rung_and_auto_where_it_pays_and_light_tracing_does_not_apply() {
+        let reusing = SceneTransport {
+            path_reuse: true,
+            ..transport()
+        };
+        for (scene, expected) in [
+            (transport(), false),
+            (reusing, true),
+            (
+                SceneTransport {
+                    light_tracing: true,
+                    ..reusing
+                },
+                false,
+            ),
+        ] {
+            let rungs = ladder(&scene, &features(1, false));
+            assert_eq!(
+                names(&rungs).contains(&"+path-reuse"),
+                expected,
+                "{scene:?}"
+            );
+            let Transport::Path(auto) = rungs.last().expect("auto is last").transport else {
+                panic!("auto is a path configuration");
+            };
+            assert_eq!(auto.path_reuse.is_some(), expected, "{scene:?}");
         }
     }
 }
