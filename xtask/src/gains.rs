@@ -484,17 +484,35 @@ fn samplers(root: &Path, name: &str) -> Result<Claim, String> {
 
 fn roulette_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "cbox")?;
-    let spp = 32;
     let (without, with) = (subject.mis(), subject.mis_with_roulette());
-    Ok(efficiency_claim(
+    switch_claim(
+        &subject,
         "Russian roulette improves efficiency on the Cornell box",
+        (without, with),
+        SamplerKind::Independent,
+        1.0,
+    )
+}
+
+/// The efficiency claim of one switch on `subject` at 32 spp with `sampler`: the settings
+/// `without` and `with` it, and the least gain `need`.
+fn switch_claim(
+    subject: &Subject,
+    name: &str,
+    (without, with): (PathSettings, PathSettings),
+    sampler: SamplerKind,
+    need: f64,
+) -> Result<Claim, String> {
+    let spp = 32;
+    Ok(efficiency_claim(
+        name,
         spp,
         efficiency_pair(
-            &subject,
-            fixed(without, SamplerKind::Independent, spp),
-            fixed(with, SamplerKind::Independent, spp),
+            subject,
+            fixed(without, sampler, spp),
+            fixed(with, sampler, spp),
         )?,
-        1.0,
+        need,
     ))
 }
 
@@ -553,22 +571,18 @@ fn glossy_light_choice_on_veach(root: &Path) -> Result<Claim, String> {
 /// almost all caustics (light through the glass sphere and off the mirror sphere).
 fn light_tracing_on_the_glass_box(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "cbox-glass")?;
-    let spp = 32;
     let without = subject.mis_with_roulette();
     let with = PathSettings {
         light_tracing: true,
         ..without
     };
-    Ok(efficiency_claim(
+    switch_claim(
+        &subject,
         "caustics by light tracing improve efficiency on the glass Cornell box",
-        spp,
-        efficiency_pair(
-            &subject,
-            fixed(without, SamplerKind::Sobol, spp),
-            fixed(with, SamplerKind::Sobol, spp),
-        )?,
+        (without, with),
+        SamplerKind::Sobol,
         2.0,
-    ))
+    )
 }
 
 /// Path reuse in 4 × 4 blocks (`auto`'s) against the same configuration without it (roulette,
@@ -577,7 +591,6 @@ fn light_tracing_on_the_glass_box(root: &Path) -> Result<Claim, String> {
 /// `strata render --time 2`, 2026-12-03).
 fn path_reuse_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "cbox")?;
-    let spp = 32;
     let without = subject.mis_with_roulette();
     let with = PathSettings {
         path_reuse: Some(PathReuse {
@@ -585,14 +598,11 @@ fn path_reuse_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
         }),
         ..without
     };
-    Ok(efficiency_claim(
+    switch_claim(
+        &subject,
         "path reuse improves efficiency on the Cornell box",
-        spp,
-        efficiency_pair(
-            &subject,
-            fixed(without, SamplerKind::Sobol, spp),
-            fixed(with, SamplerKind::Sobol, spp),
-        )?,
+        (without, with),
+        SamplerKind::Sobol,
         1.5,
-    ))
+    )
 }

@@ -213,18 +213,28 @@ fn back_of_a_two_sided_surface_shows_its_back_bsdf_for_every_configuration() {
     }
 }
 
+/// The radiance of the emitting sphere inside which [`furnace`]'s camera sits.
+const FURNACE_RADIANCE: Vec3 = Vec3::new(0.25, 0.5, 1.0);
+
+/// The camera inside an emitting diffuse sphere of `reflectance`, at `max_depth`.
+fn furnace(dir: &Path, name: &str, reflectance: f32, max_depth: i32) -> RenderScene {
+    let body = format!(
+        r#"    <shape type="sphere"><float name="radius" value="1"/>
+        <boolean name="flip_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="{reflectance}"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="0.25, 0.5, 1"/></emitter></shape>"#
+    );
+    let camera = r#"<lookat origin="0.2, 0.1, 0" target="0, 0, -1" up="0, 1, 0"/>"#;
+    let xml = scene_xml(max_depth, false, camera, 60.0, NEAR_CLIP, &body);
+    load_xml(dir, name, &xml, SIZE)
+}
+
 #[test]
 fn albedo_zero_furnace_shows_only_emission() {
     // Inside an emitting sphere of albedo 0 every pixel is exactly its radiance.
     let dir = tempfile::tempdir().unwrap();
-    let body = r#"    <shape type="sphere"><float name="radius" value="1"/>
-        <boolean name="flip_normals" value="true"/>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
-        <emitter type="area"><rgb name="radiance" value="0.25, 0.5, 1"/></emitter></shape>"#;
-    let camera = r#"<lookat origin="0.2, 0.1, 0" target="0, 0, -1" up="0, 1, 0"/>"#;
-    let xml = scene_xml(-1, false, camera, 60.0, NEAR_CLIP, body);
-    let scene = load_xml(dir.path(), "black-furnace", &xml, SIZE);
-    every_configuration_is_exact(&scene, "albedo-0 furnace", 16, Vec3::new(0.25, 0.5, 1.0));
+    let scene = furnace(dir.path(), "black-furnace", 0.0, -1);
+    every_configuration_is_exact(&scene, "albedo-0 furnace", 16, FURNACE_RADIANCE);
 }
 
 #[test]
@@ -233,16 +243,9 @@ fn grey_furnace_sums_the_bounces_for_every_configuration() {
     // five vertices, each bounce keeping half: every pixel is Le (1 + ½ + ¼ + ⅛ + 1/16). Every
     // first and second vertex is diffuse and sees every other, so path reuse shares all of them.
     let dir = tempfile::tempdir().unwrap();
-    let body = r#"    <shape type="sphere"><float name="radius" value="1"/>
-        <boolean name="flip_normals" value="true"/>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
-        <emitter type="area"><rgb name="radiance" value="0.25, 0.5, 1"/></emitter></shape>"#;
-    let camera = r#"<lookat origin="0.2, 0.1, 0" target="0, 0, -1" up="0, 1, 0"/>"#;
-    let xml = scene_xml(5, false, camera, 60.0, NEAR_CLIP, body);
-    let scene = load_xml(dir.path(), "grey-furnace", &xml, SIZE);
+    let scene = furnace(dir.path(), "grey-furnace", 0.5, 5);
     let bounces: f32 = (0..5).map(|k| 0.5_f32.powi(k)).sum();
-    let exact = Vec3::new(0.25, 0.5, 1.0) * bounces;
-    every_configuration_is_exact(&scene, "albedo-½ furnace", 64, exact);
+    every_configuration_is_exact(&scene, "albedo-½ furnace", 64, FURNACE_RADIANCE * bounces);
 }
 
 /// A tilted glass slab with index of refraction `ior` in a white sky, seen from outside.
