@@ -407,19 +407,31 @@ where
                 sums: tile.pixels().map(|pixel| *shared.pixel(pixel)).collect(),
                 ..TileResult::default()
             };
+            let mut taking = [UVec2::ZERO; MAX_BLOCK_PIXELS];
+            let mut slots = [0usize; MAX_BLOCK_PIXELS];
+            let mut values = [Vec3::ZERO; MAX_BLOCK_PIXELS];
             for block_origin in block_origins(tile, block) {
-                let pixels = block_pixels(tile, block_origin, block, &samples);
-                let first = pixels.clone().map(|(_, _, r)| r.start).min().unwrap_or(0);
-                let end = pixels.clone().map(|(_, _, r)| r.end).max().unwrap_or(0);
-                let mut taking = [UVec2::ZERO; MAX_BLOCK_PIXELS];
-                let mut slots = [0usize; MAX_BLOCK_PIXELS];
-                let mut values = [Vec3::ZERO; MAX_BLOCK_PIXELS];
+                let mut members = [BlockMember::default(); MAX_BLOCK_PIXELS];
+                let mut size = 0;
+                for (pixel, slot) in block_pixels(tile, block_origin, block) {
+                    let indices = samples.indices(pixel);
+                    members[size] = BlockMember {
+                        pixel,
+                        slot,
+                        first: indices.start,
+                        end: indices.end,
+                    };
+                    size += 1;
+                }
+                let members = &members[..size];
+                let first = members.iter().map(|m| m.first).min().unwrap_or(0);
+                let end = members.iter().map(|m| m.end).max().unwrap_or(0);
                 for index in first..end {
                     let mut count = 0;
-                    for (pixel, slot, range) in pixels.clone() {
-                        if range.contains(&index) {
-                            taking[count] = pixel;
-                            slots[count] = slot;
+                    for member in members {
+                        if (member.first..member.end).contains(&index) {
+                            taking[count] = member.pixel;
+                            slots[count] = member.slot;
                             count += 1;
                         }
                     }
@@ -471,24 +483,31 @@ fn block_origins(tile: &Tile, block: u32) -> impl Iterator<Item = UVec2> + '_ {
 }
 
 /// The pixels of the block at the tile-relative `origin`, in row order, each with its index in
-/// [`Tile::pixels`] order and its sample indices in the pass.
-fn block_pixels<'a>(
-    tile: &'a Tile,
+/// [`Tile::pixels`] order.
+fn block_pixels(
+    tile: &Tile,
     origin: UVec2,
     block: u32,
-    samples: &'a PassSamples<'_>,
-) -> impl Iterator<Item = (UVec2, usize, std::ops::Range<u32>)> + Clone + 'a {
+) -> impl Iterator<Item = (UVec2, usize)> + '_ {
     let end = (origin + UVec2::splat(block)).min(tile.size);
     (origin.y..end.y).flat_map(move |y| {
         (origin.x..end.x).map(move |x| {
-            let pixel = tile.origin + UVec2::new(x, y);
             (
-                pixel,
+                tile.origin + UVec2::new(x, y),
                 (y * tile.size.x + x) as usize,
-                samples.indices(pixel),
             )
         })
     })
+}
+
+/// A pixel of a block in a pass: where it is, its index in [`Tile::pixels`] order and its sample
+/// indices `first .. end`.
+#[derive(Clone, Copy, Debug, Default)]
+struct BlockMember {
+    pixel: UVec2,
+    slot: usize,
+    first: u32,
+    end: u32,
 }
 
 /// Traces the light path of `pixel`'s sample `index` and keeps its finite splats in `result`.
