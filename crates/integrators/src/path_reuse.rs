@@ -28,9 +28,10 @@
 
 use crate::{RayTally, SurfaceHit, World};
 use geometry::{Ray, offset_ray_origin};
-use glam::Vec3;
+use glam::{BVec4A, Vec3, Vec4};
 use materials::{Bsdf, Diffuse};
 use sampling::Frame;
+use std::f32::consts::FRAC_1_PI;
 
 /// The most paths [`combine`] takes at once.
 pub const MAX_BLOCK_PATHS: usize = 16;
@@ -101,24 +102,6 @@ impl FirstVertex {
         }
     }
 
-    /// Towards the surface point `y`: f · |cos θ_x| · |cos θ_y| / d² (RGB, per unit area of y)
-    /// and the density per unit area with which this vertex's BSDF sampling reaches `y` if
-    /// nothing is in between; `None` where either is zero.
-    fn towards(&self, y: &SecondVertex) -> Option<(Vec3, f32)> {
-        let to_y = y.p - self.p;
-        let distance_squared = to_y.length_squared();
-        if distance_squared == 0.0 {
-            return None;
-        }
-        let dir = to_y / distance_squared.sqrt();
-        let wi = self.frame.to_local(dir);
-        let (f, pdf_solid_angle) = self.diffuse.eval_with_pdf(self.wo, wi);
-        let area_per_solid_angle = y.ng.dot(dir).abs() / distance_squared;
-        let pdf_area = pdf_solid_angle * area_per_solid_angle;
-        (pdf_area > 0.0 && pdf_area.is_finite())
-            .then(|| (f * (wi.z.abs() * area_per_solid_angle), pdf_area))
-    }
-
     /// True when nothing blocks the segment from this vertex to `y`, as [`World::unoccluded`]
     /// tests it (both ends moved off their surfaces), told to `tally` as one shadow ray.
     fn sees(&self, y: &SecondVertex, world: &World, tally: &mut impl RayTally) -> bool {
@@ -127,6 +110,77 @@ impl FirstVertex {
         let (ray, t_max) = Ray::between(origin, end, to_y, self.ng);
         world.ray_unoccluded(&ray, t_max, tally)
     }
+}
+
+/// One [`f32`] per path of a block, four to a vector.
+type Lanes = [Vec4; MAX_BLOCK_PATHS / 4];
+
+/// The first vertices of a block laid out lane by lane (structure of arrays), so that the
+/// densities from all of them towards one second vertex are computed four at a time. A lane
+/// without a first vertex, or whose first vertex faces away from the camera, has `inv_pi` zero,
+/// hence density zero everywhere.
+struct FirstVertexLanes {
+    /// Positions (world units), by coordinate.
+    p: [Lanes; 3],
+    /// Unit shading normals (the BSDF's +z), by coordinate.
+    n: [Lanes; 3],
+    /// 1/π where the lane's cosine-sampling density counts, else 0 (sr⁻¹).
+    inv_pi: Lanes,
+}
+
+impl FirstVertexLanes {
+    fn of(paths: &[ReusablePath]) -> Self {
+        let mut p = [[0.0; MAX_BLOCK_PATHS]; 3];
+        let mut n = [[0.0; MAX_BLOCK_PATHS]; 3];
+        let mut inv_pi = [0.0; MAX_BLOCK_PATHS];
+        for (k, first) in paths.iter().enumerate() {
+            let Some(x) = &first.first else {
+                continue;
+            };
+            for axis in 0..3 {
+                p[axis][k] = x.p[axis];
+                n[axis][k] = x.frame.n[axis];
+            }
+            // The diffuse lobe reflects nothing towards a camera behind it.
+            inv_pi[k] = if x.wo.z > 0.0 { FRAC_1_PI } else { 0.0 };
+        }
+        Self {
+            p: p.map(|axis| lanes(&axis)),
+            n: n.map(|axis| lanes(&axis)),
+            inv_pi: lanes(&inv_pi),
+        }
+    }
+
+    /// For every lane, the density per unit area with which its cosine sampling reaches `y` if
+    /// nothing is in between, where its first vertex lies on the sides of `y` given by `side`
+    /// ([`SecondVertex::side_of`]); zero elsewhere, and where the density is not positive and
+    /// finite.
+    fn pdf_area_towards(&self, y: &SecondVertex, side: (bool, bool)) -> [f32; MAX_BLOCK_PATHS] {
+        // Seen from y the first vertex lies along −d: on the front of a normal n where n·d < 0.
+        let (front_ng, front_ns) = (BVec4A::splat(side.0), BVec4A::splat(side.1));
+        let mut pdf_area = [0.0; MAX_BLOCK_PATHS];
+        for (c, out) in pdf_area.chunks_exact_mut(4).enumerate() {
+            let d = [0, 1, 2].map(|axis| Vec4::splat(y.p[axis]) - self.p[axis][c]);
+            let dot = |v: Vec3| d[0] * v.x + d[1] * v.y + d[2] * v.z;
+            let distance_squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            let distance = distance_squared.sqrt();
+            let cos_x =
+                (self.n[0][c] * d[0] + self.n[1][c] * d[1] + self.n[2][c] * d[2]) / distance;
+            let (ng_dot, ns_dot) = (dot(y.ng), dot(y.ns));
+            let cos_y = ng_dot.abs() / distance;
+            let p = cos_x * self.inv_pi[c] * cos_y / distance_squared;
+            let same_side =
+                !(ng_dot.cmplt(Vec4::ZERO) ^ front_ng) & !(ns_dot.cmplt(Vec4::ZERO) ^ front_ns);
+            let counts = same_side & p.cmpgt(Vec4::ZERO) & p.cmplt(Vec4::INFINITY);
+            Vec4::select(counts, p, Vec4::ZERO).write_to_slice(out);
+        }
+        pdf_area
+    }
+}
+
+/// `values` four to a vector.
+fn lanes(values: &[f32; MAX_BLOCK_PATHS]) -> Lanes {
+    std::array::from_fn(|c| Vec4::from_slice(&values[4 * c..]))
 }
 
 /// A path's second vertex, kept where it is diffuse, with the radiance it reflects towards the
@@ -195,37 +249,36 @@ pub fn combine(
     radiance: &mut [Vec3],
 ) {
     assert!(paths.len() <= MAX_BLOCK_PATHS, "too many paths to combine");
+    let radiance = &mut radiance[..paths.len()];
     for (out, path) in radiance.iter_mut().zip(paths) {
         *out = path.own;
     }
+    let firsts = FirstVertexLanes::of(paths);
     for (j, path) in paths.iter().enumerate() {
         let (Some(x_j), Some(y)) = (&path.first, &path.second) else {
             continue;
         };
-        let side = y.side_of(x_j.p);
-        let mut connections = [None; MAX_BLOCK_PATHS];
+        let mut pdf_area = firsts.pdf_area_towards(y, y.side_of(x_j.p));
         let mut total_pdf_area = 0.0;
-        for (k, other) in paths.iter().enumerate() {
-            let Some(x_k) = &other.first else {
-                continue;
-            };
-            if y.side_of(x_k.p) != side {
-                continue;
-            }
-            let Some((f_g, pdf_area)) = x_k.towards(y) else {
-                continue;
-            };
+        for (k, (pdf, other)) in pdf_area.iter_mut().zip(paths).enumerate() {
             // Path j's own second vertex is what its ray found: visible.
-            if k != j && !x_k.sees(y, world, tally) {
-                continue;
+            if *pdf > 0.0
+                && k != j
+                && let Some(x_k) = &other.first
+                && !x_k.sees(y, world, tally)
+            {
+                *pdf = 0.0;
             }
-            connections[k] = Some(f_g);
-            total_pdf_area += pdf_area;
+            total_pdf_area += *pdf;
         }
         if total_pdf_area > 0.0 {
-            for (out, f_g) in radiance.iter_mut().zip(connections) {
-                if let Some(f_g) = f_g {
-                    *out += f_g * y.reflected / total_pdf_area;
+            let share = y.reflected / total_pdf_area;
+            for ((out, pdf), other) in radiance.iter_mut().zip(pdf_area).zip(paths) {
+                // f G = albedo · pdf_area for a Lambertian first vertex.
+                if pdf > 0.0
+                    && let Some(x_k) = &other.first
+                {
+                    *out += x_k.diffuse.reflectance() * pdf * share;
                 }
             }
         }
