@@ -126,6 +126,8 @@ struct FirstVertexLanes {
     n: [Lanes; 3],
     /// 1/π where the lane's cosine-sampling density counts, else 0 (sr⁻¹).
     inv_pi: Lanes,
+    /// The RGB albedos (zero in lanes without a first vertex).
+    albedo: [Vec3; MAX_BLOCK_PATHS],
 }
 
 impl FirstVertexLanes {
@@ -133,6 +135,7 @@ impl FirstVertexLanes {
         let mut p = [[0.0; MAX_BLOCK_PATHS]; 3];
         let mut n = [[0.0; MAX_BLOCK_PATHS]; 3];
         let mut inv_pi = [0.0; MAX_BLOCK_PATHS];
+        let mut albedo = [Vec3::ZERO; MAX_BLOCK_PATHS];
         for (k, first) in paths.iter().enumerate() {
             let Some(x) = &first.first else {
                 continue;
@@ -143,22 +146,29 @@ impl FirstVertexLanes {
             }
             // The diffuse lobe reflects nothing towards a camera behind it.
             inv_pi[k] = if x.wo.z > 0.0 { FRAC_1_PI } else { 0.0 };
+            albedo[k] = x.diffuse.reflectance();
         }
         Self {
             p: p.map(|axis| lanes(&axis)),
             n: n.map(|axis| lanes(&axis)),
             inv_pi: lanes(&inv_pi),
+            albedo,
         }
     }
 
     /// For every lane, the density per unit area with which its cosine sampling reaches `y` if
     /// nothing is in between, where its first vertex lies on the sides of `y` given by `side`
     /// ([`SecondVertex::side_of`]); zero elsewhere, and where the density is not positive and
-    /// finite.
-    fn pdf_area_towards(&self, y: &SecondVertex, side: (bool, bool)) -> [f32; MAX_BLOCK_PATHS] {
+    /// finite; and the lanes where it is not zero, as a bit mask.
+    fn pdf_area_towards(
+        &self,
+        y: &SecondVertex,
+        side: (bool, bool),
+    ) -> ([f32; MAX_BLOCK_PATHS], u32) {
         // Seen from y the first vertex lies along −d: on the front of a normal n where n·d < 0.
         let (front_ng, front_ns) = (BVec4A::splat(side.0), BVec4A::splat(side.1));
         let mut pdf_area = [0.0; MAX_BLOCK_PATHS];
+        let mut counted = 0;
         for (c, out) in pdf_area.chunks_exact_mut(4).enumerate() {
             let d = [0, 1, 2].map(|axis| Vec4::splat(y.p[axis]) - self.p[axis][c]);
             let dot = |v: Vec3| d[0] * v.x + d[1] * v.y + d[2] * v.z;
@@ -173,8 +183,9 @@ impl FirstVertexLanes {
                 !(ng_dot.cmplt(Vec4::ZERO) ^ front_ng) & !(ns_dot.cmplt(Vec4::ZERO) ^ front_ns);
             let counts = same_side & p.cmpgt(Vec4::ZERO) & p.cmplt(Vec4::INFINITY);
             Vec4::select(counts, p, Vec4::ZERO).write_to_slice(out);
+            counted |= counts.bitmask() << (4 * c);
         }
-        pdf_area
+        (pdf_area, counted)
     }
 }
 
@@ -258,31 +269,35 @@ pub fn combine(
         let (Some(x_j), Some(y)) = (&path.first, &path.second) else {
             continue;
         };
-        let mut pdf_area = firsts.pdf_area_towards(y, y.side_of(x_j.p));
-        let mut total_pdf_area = 0.0;
-        for (k, (pdf, other)) in pdf_area.iter_mut().zip(paths).enumerate() {
-            // Path j's own second vertex is what its ray found: visible.
-            if *pdf > 0.0
-                && k != j
-                && let Some(x_k) = &other.first
+        let (mut pdf_area, counted) = firsts.pdf_area_towards(y, y.side_of(x_j.p));
+        // Path j's own second vertex is what its ray found: visible.
+        for k in lanes_of(counted & !(1 << j)) {
+            if let Some(x_k) = &paths[k].first
                 && !x_k.sees(y, world, tally)
             {
-                *pdf = 0.0;
+                pdf_area[k] = 0.0;
             }
-            total_pdf_area += *pdf;
         }
+        let total_pdf_area: f32 = pdf_area.iter().sum();
         if total_pdf_area > 0.0 {
             let share = y.reflected / total_pdf_area;
-            for ((out, pdf), other) in radiance.iter_mut().zip(pdf_area).zip(paths) {
+            for k in lanes_of(counted) {
                 // f G = albedo · pdf_area for a Lambertian first vertex.
-                if pdf > 0.0
-                    && let Some(x_k) = &other.first
-                {
-                    *out += x_k.diffuse.reflectance() * pdf * share;
-                }
+                radiance[k] += firsts.albedo[k] * pdf_area[k] * share;
             }
         }
     }
+}
+
+/// The lanes set in `mask`, lowest first.
+fn lanes_of(mut mask: u32) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let lane = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            lane
+        })
+    })
 }
 
 #[cfg(test)]
