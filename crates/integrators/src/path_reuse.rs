@@ -59,9 +59,7 @@ pub struct FirstVertex {
 /// once per vertex rather than once per connection.
 #[derive(Clone, Copy, Debug)]
 struct Offsets {
-    /// Unit geometric normal.
-    ng: Vec3,
-    /// The point moved to the side `ng` points to, and to the other.
+    /// The point moved to the side its geometric normal points to, and to the other.
     front: Vec3,
     back: Vec3,
 }
@@ -69,18 +67,8 @@ struct Offsets {
 impl Offsets {
     fn of(p: Vec3, ng: Vec3) -> Self {
         Self {
-            ng,
             front: offset_ray_origin(p, ng, ng),
             back: offset_ray_origin(p, ng, -ng),
-        }
-    }
-
-    /// The point moved as [`offset_ray_origin`] moves it for direction `dir`.
-    fn towards(&self, dir: Vec3) -> Vec3 {
-        if self.ng.dot(dir) < 0.0 {
-            self.back
-        } else {
-            self.front
         }
     }
 }
@@ -101,97 +89,237 @@ impl FirstVertex {
             _ => None,
         }
     }
+}
 
-    /// True when nothing blocks the segment from this vertex to `y`, as [`World::unoccluded`]
-    /// tests it (both ends moved off their surfaces), told to `tally` as one shadow ray.
-    fn sees(&self, y: &SecondVertex, world: &World, tally: &mut impl RayTally) -> bool {
-        let to_y = y.p - self.p;
-        let (origin, end) = (self.offsets.towards(to_y), y.offsets.towards(-to_y));
-        let (ray, t_max) = Ray::between(origin, end, to_y, self.ng);
-        world.ray_unoccluded(&ray, t_max, tally)
+/// Four 3-vectors, coordinate by coordinate (structure of arrays).
+#[derive(Clone, Copy, Debug, Default)]
+struct Vec3x4 {
+    x: Vec4,
+    y: Vec4,
+    z: Vec4,
+}
+
+impl Vec3x4 {
+    #[inline]
+    fn splat(v: Vec3) -> Self {
+        Self {
+            x: Vec4::splat(v.x),
+            y: Vec4::splat(v.y),
+            z: Vec4::splat(v.z),
+        }
+    }
+
+    /// Vector `lane`.
+    #[inline]
+    fn lane(&self, lane: usize) -> Vec3 {
+        Vec3::new(self.x[lane], self.y[lane], self.z[lane])
+    }
+
+    #[inline]
+    fn set_lane(&mut self, lane: usize, v: Vec3) {
+        (self.x[lane], self.y[lane], self.z[lane]) = (v.x, v.y, v.z);
+    }
+
+    /// Dot products, summed x, y, z in that order (as [`Vec3::dot`] sums them).
+    #[inline]
+    fn dot(&self, other: &Self) -> Vec4 {
+        self.x * other.x + self.y * other.y + self.z * other.z
+    }
+
+    #[inline]
+    fn minus(&self, other: &Self) -> Self {
+        Self {
+            x: self.x - other.x,
+            y: self.y - other.y,
+            z: self.z - other.z,
+        }
+    }
+
+    #[inline]
+    fn divided_by(&self, by: Vec4) -> Self {
+        Self {
+            x: self.x / by,
+            y: self.y / by,
+            z: self.z / by,
+        }
+    }
+
+    /// `if_true`'s vectors where `mask` is set, `if_false`'s elsewhere.
+    #[inline]
+    fn select(mask: BVec4A, if_true: &Self, if_false: &Self) -> Self {
+        Self {
+            x: Vec4::select(mask, if_true.x, if_false.x),
+            y: Vec4::select(mask, if_true.y, if_false.y),
+            z: Vec4::select(mask, if_true.z, if_false.z),
+        }
     }
 }
 
-/// One [`f32`] per path of a block, four to a vector.
-type Lanes = [Vec4; MAX_BLOCK_PATHS / 4];
+/// Groups of four lanes in a block of [`MAX_BLOCK_PATHS`] paths.
+const GROUPS: usize = MAX_BLOCK_PATHS / 4;
 
 /// The first vertices of a block laid out lane by lane (structure of arrays), so that the
-/// densities from all of them towards one second vertex are computed four at a time. A lane
+/// connections from all of them towards one second vertex are computed four at a time. A lane
 /// without a first vertex, or whose first vertex faces away from the camera, has `inv_pi` zero,
 /// hence density zero everywhere.
 struct FirstVertexLanes {
-    /// Positions (world units), by coordinate.
-    p: [Lanes; 3],
-    /// Unit shading normals (the BSDF's +z), by coordinate.
-    n: [Lanes; 3],
+    /// Positions (world units).
+    p: [Vec3x4; GROUPS],
+    /// Unit shading normals (the BSDF's +z).
+    n: [Vec3x4; GROUPS],
+    /// Unit geometric normals.
+    ng: [Vec3x4; GROUPS],
+    /// The positions moved off their surfaces to the side of `ng` and to the other
+    /// ([`Offsets`]).
+    front: [Vec3x4; GROUPS],
+    back: [Vec3x4; GROUPS],
     /// 1/π where the lane's cosine-sampling density counts, else 0 (sr⁻¹).
-    inv_pi: Lanes,
+    inv_pi: [Vec4; GROUPS],
     /// The RGB albedos (zero in lanes without a first vertex).
     albedo: [Vec3; MAX_BLOCK_PATHS],
 }
 
+/// The connections of four of a block's first vertices to one second vertex y, lane by lane.
+#[derive(Clone, Copy, Debug, Default)]
+struct ConnectionLanes {
+    /// The density per unit area with which each lane's cosine sampling reaches y if nothing is
+    /// in between; zero where the lane does not count (see [`FirstVertexLanes::towards`]).
+    pdf_area: Vec4,
+    /// The lanes whose density is not zero, as a bit mask.
+    counted: u32,
+    /// The shadow ray from each lane's first vertex to y, as [`Ray::between`] makes it from the
+    /// two ends moved off their surfaces: origin, unit direction and `t_max`.
+    origin: Vec3x4,
+    dir: Vec3x4,
+    t_max: Vec4,
+}
+
+/// The connections of all of a block's first vertices to one second vertex y.
+struct Connections([ConnectionLanes; GROUPS]);
+
+impl Connections {
+    /// The lanes whose density is not zero, as a bit mask.
+    #[inline]
+    fn counted(&self) -> u32 {
+        let mut mask = 0;
+        for (group, lanes) in self.0.iter().enumerate() {
+            mask |= lanes.counted << (4 * group);
+        }
+        mask
+    }
+
+    /// The density per unit area of `lane` (see [`ConnectionLanes::pdf_area`]).
+    #[inline]
+    fn pdf_area(&self, lane: usize) -> f32 {
+        self.0[lane / 4].pdf_area[lane % 4]
+    }
+
+    /// The shadow ray of `lane` and its `t_max`.
+    #[inline]
+    fn ray(&self, lane: usize) -> (Ray, f32) {
+        let lanes = &self.0[lane / 4];
+        let ray = Ray {
+            origin: lanes.origin.lane(lane % 4),
+            dir: lanes.dir.lane(lane % 4),
+        };
+        (ray, lanes.t_max[lane % 4])
+    }
+
+    /// Counts `lane` out: its first vertex does not see y.
+    #[inline]
+    fn occlude(&mut self, lane: usize) {
+        self.0[lane / 4].pdf_area[lane % 4] = 0.0;
+    }
+
+    /// The sum of the densities, lane by lane in order.
+    #[inline]
+    fn total_pdf_area(&self) -> f32 {
+        let mut total = 0.0;
+        for lanes in &self.0 {
+            for pdf in lanes.pdf_area.to_array() {
+                total += pdf;
+            }
+        }
+        total
+    }
+}
+
 impl FirstVertexLanes {
+    #[inline]
     fn of(paths: &[ReusablePath]) -> Self {
-        let mut p = [[0.0; MAX_BLOCK_PATHS]; 3];
-        let mut n = [[0.0; MAX_BLOCK_PATHS]; 3];
-        let mut inv_pi = [0.0; MAX_BLOCK_PATHS];
-        let mut albedo = [Vec3::ZERO; MAX_BLOCK_PATHS];
+        let mut lanes = Self {
+            p: [Vec3x4::default(); GROUPS],
+            n: [Vec3x4::default(); GROUPS],
+            ng: [Vec3x4::default(); GROUPS],
+            front: [Vec3x4::default(); GROUPS],
+            back: [Vec3x4::default(); GROUPS],
+            inv_pi: [Vec4::ZERO; GROUPS],
+            albedo: [Vec3::ZERO; MAX_BLOCK_PATHS],
+        };
         for (k, first) in paths.iter().enumerate() {
             let Some(x) = &first.first else {
                 continue;
             };
-            for axis in 0..3 {
-                p[axis][k] = x.p[axis];
-                n[axis][k] = x.frame.n[axis];
-            }
+            let (group, lane) = (k / 4, k % 4);
+            lanes.p[group].set_lane(lane, x.p);
+            lanes.n[group].set_lane(lane, x.frame.n);
+            lanes.ng[group].set_lane(lane, x.ng);
+            lanes.front[group].set_lane(lane, x.offsets.front);
+            lanes.back[group].set_lane(lane, x.offsets.back);
             // The diffuse lobe reflects nothing towards a camera behind it.
-            inv_pi[k] = if x.wo.z > 0.0 { FRAC_1_PI } else { 0.0 };
-            albedo[k] = x.diffuse.reflectance();
+            lanes.inv_pi[group][lane] = if x.wo.z > 0.0 { FRAC_1_PI } else { 0.0 };
+            lanes.albedo[k] = x.diffuse.reflectance();
         }
-        Self {
-            p: p.map(|axis| lanes(&axis)),
-            n: n.map(|axis| lanes(&axis)),
-            inv_pi: lanes(&inv_pi),
-            albedo,
-        }
+        lanes
     }
 
     /// For every lane, the density per unit area with which its cosine sampling reaches `y` if
     /// nothing is in between, where its first vertex lies on the sides of `y` given by `side`
-    /// ([`SecondVertex::side_of`]); zero elsewhere, and where the density is not positive and
-    /// finite; and the lanes where it is not zero, as a bit mask.
-    fn pdf_area_towards(
-        &self,
-        y: &SecondVertex,
-        side: (bool, bool),
-    ) -> ([f32; MAX_BLOCK_PATHS], u32) {
+    /// ([`SecondVertex::side_of`]), zero elsewhere and where the density is not positive and
+    /// finite; and the shadow ray to `y`.
+    #[inline]
+    fn towards(&self, y: &SecondVertex, side: (bool, bool)) -> Connections {
         // Seen from y the first vertex lies along −d: on the front of a normal n where n·d < 0.
         let (front_ng, front_ns) = (BVec4A::splat(side.0), BVec4A::splat(side.1));
-        let mut pdf_area = [0.0; MAX_BLOCK_PATHS];
-        let mut counted = 0;
-        for (c, out) in pdf_area.chunks_exact_mut(4).enumerate() {
-            let d = [0, 1, 2].map(|axis| Vec4::splat(y.p[axis]) - self.p[axis][c]);
-            let dot = |v: Vec3| d[0] * v.x + d[1] * v.y + d[2] * v.z;
-            let distance_squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let (y_p, y_ng, y_ns) = (Vec3x4::splat(y.p), Vec3x4::splat(y.ng), Vec3x4::splat(y.ns));
+        let (y_front, y_back) = (
+            Vec3x4::splat(y.offsets.front),
+            Vec3x4::splat(y.offsets.back),
+        );
+        let mut connections = Connections([ConnectionLanes::default(); GROUPS]);
+        for (group, out) in connections.0.iter_mut().enumerate() {
+            let d = y_p.minus(&self.p[group]);
+            let distance_squared = d.dot(&d);
             let distance = distance_squared.sqrt();
-            let cos_x =
-                (self.n[0][c] * d[0] + self.n[1][c] * d[1] + self.n[2][c] * d[2]) / distance;
-            let (ng_dot, ns_dot) = (dot(y.ng), dot(y.ns));
+            let cos_x = d.dot(&self.n[group]) / distance;
+            let (ng_dot, ns_dot) = (d.dot(&y_ng), d.dot(&y_ns));
             let cos_y = ng_dot.abs() / distance;
-            let p = cos_x * self.inv_pi[c] * cos_y / distance_squared;
+            let pdf = cos_x * self.inv_pi[group] * cos_y / distance_squared;
             let same_side =
                 !(ng_dot.cmplt(Vec4::ZERO) ^ front_ng) & !(ns_dot.cmplt(Vec4::ZERO) ^ front_ns);
-            let counts = same_side & p.cmpgt(Vec4::ZERO) & p.cmplt(Vec4::INFINITY);
-            Vec4::select(counts, p, Vec4::ZERO).write_to_slice(out);
-            counted |= counts.bitmask() << (4 * c);
-        }
-        (pdf_area, counted)
-    }
-}
+            let counts = same_side & pdf.cmpgt(Vec4::ZERO) & pdf.cmplt(Vec4::INFINITY);
 
-/// `values` four to a vector.
-fn lanes(values: &[f32; MAX_BLOCK_PATHS]) -> Lanes {
-    std::array::from_fn(|c| Vec4::from_slice(&values[4 * c..]))
+            // The ends moved off their surfaces as `offset_ray_origin` moves them, and the ray
+            // between them as `Ray::between` makes it.
+            let ng = &self.ng[group];
+            let leaves_back = d.dot(ng).cmplt(Vec4::ZERO);
+            let origin = Vec3x4::select(leaves_back, &self.back[group], &self.front[group]);
+            let end = Vec3x4::select(ng_dot.cmpgt(Vec4::ZERO), &y_back, &y_front);
+            let segment = end.minus(&origin);
+            let length = segment.dot(&segment).sqrt();
+            let forward = length.cmpgt(Vec4::ZERO)
+                & length.cmplt(Vec4::INFINITY)
+                & segment.dot(&d).cmpgt(Vec4::ZERO);
+            *out = ConnectionLanes {
+                pdf_area: Vec4::select(counts, pdf, Vec4::ZERO),
+                counted: counts.bitmask(),
+                origin,
+                dir: Vec3x4::select(forward, &segment.divided_by(length), ng),
+                t_max: Vec4::select(forward, length, Vec4::ZERO),
+            };
+        }
+        connections
+    }
 }
 
 /// A path's second vertex, kept where it is diffuse, with the radiance it reflects towards the
@@ -269,21 +397,21 @@ pub fn combine(
         let (Some(x_j), Some(y)) = (&path.first, &path.second) else {
             continue;
         };
-        let (mut pdf_area, counted) = firsts.pdf_area_towards(y, y.side_of(x_j.p));
+        let mut connections = firsts.towards(y, y.side_of(x_j.p));
+        let counted = connections.counted();
         // Path j's own second vertex is what its ray found: visible.
         for k in lanes_of(counted & !(1 << j)) {
-            if let Some(x_k) = &paths[k].first
-                && !x_k.sees(y, world, tally)
-            {
-                pdf_area[k] = 0.0;
+            let (ray, t_max) = connections.ray(k);
+            if !world.ray_unoccluded(&ray, t_max, tally) {
+                connections.occlude(k);
             }
         }
-        let total_pdf_area: f32 = pdf_area.iter().sum();
+        let total_pdf_area = connections.total_pdf_area();
         if total_pdf_area > 0.0 {
             let share = y.reflected / total_pdf_area;
             for k in lanes_of(counted) {
                 // f G = albedo · pdf_area for a Lambertian first vertex.
-                radiance[k] += firsts.albedo[k] * pdf_area[k] * share;
+                radiance[k] += firsts.albedo[k] * connections.pdf_area(k) * share;
             }
         }
     }
@@ -446,26 +574,47 @@ mod tests {
     }
 
     #[test]
-    fn precomputed_offsets_are_the_ray_offsets_for_every_direction() {
-        let points = [
-            Vec3::new(0.3, -2.0, 5.0),
-            Vec3::new(1e4, 0.01, -3e3),
-            Vec3::ZERO,
+    fn connection_rays_are_the_shadow_rays_of_world_unoccluded() {
+        // Every first vertex of a block against second vertices on both sides of each, far from
+        // and near the origin (where the offsets switch from ulps to a fixed distance), bit for
+        // bit against `Ray::spawn_to`, which `World::unoccluded` traces.
+        let firsts = [
+            (Vec3::new(0.3, -2.0, 5.0), Vec3::Z),
+            (Vec3::new(1e4, 0.01, -3e3), Vec3::new(0.0, 0.6, -0.8)),
+            (Vec3::ZERO, Vec3::new(-0.48, 0.6, 0.64)),
+            (Vec3::new(0.02, -0.01, 0.5), Vec3::NEG_X),
+            (Vec3::new(-7.0, 3.0, 0.0), Vec3::new(0.6, 0.0, 0.8)),
         ];
-        let normals = [
-            Vec3::Z,
-            Vec3::new(0.0, 0.6, -0.8),
-            Vec3::new(-0.48, 0.6, 0.64),
+        let seconds = [
+            (Vec3::new(0.3, -2.0, 6.0), Vec3::NEG_Z),
+            (Vec3::new(1e4, 2.0, -3e3), Vec3::Y),
+            (Vec3::new(0.01, 0.0, 0.0), Vec3::new(0.0, 0.8, 0.6)),
+            (Vec3::new(-7.0, 3.0, 1e-3), Vec3::new(0.6, 0.0, 0.8)),
+            // In the tangent plane of the first: n · d is exactly zero there.
+            (Vec3::new(1.3, -2.0, 5.0), Vec3::X),
         ];
-        for (p, ng) in points.into_iter().zip(normals) {
-            let offsets = Offsets::of(p, ng);
-            for dir in [ng, -ng, Vec3::X, Vec3::NEG_Y, ng.any_orthonormal_vector()] {
-                assert_eq!(
-                    offsets.towards(dir),
-                    offset_ray_origin(p, ng, dir),
-                    "{p} {ng} {dir}"
-                );
+        let paths = firsts.map(|x| path_from(0.0, x, None));
+        let lanes = FirstVertexLanes::of(&paths);
+        let mut rays = 0;
+        for (q, n) in seconds.into_iter().flat_map(|(q, n)| [(q, n), (q, -n)]) {
+            let y = SecondVertex {
+                p: q,
+                ng: n,
+                ns: n,
+                offsets: Offsets::of(q, n),
+                reflected: REFLECTED,
+            };
+            let connections = lanes.towards(&y, y.side_of(firsts[0].0));
+            for (k, &(p, ng)) in firsts.iter().enumerate() {
+                let (ray, t_max) = connections.ray(k);
+                let (expected, expected_t_max) = Ray::spawn_to(p, ng, q, n);
+                let what = format!("from {p} (normal {ng}) to {q} (normal {n})");
+                assert_eq!(ray.origin, expected.origin, "origin {what}");
+                assert_eq!(ray.dir, expected.dir, "direction {what}");
+                assert_eq!(t_max, expected_t_max, "t_max {what}");
+                rays += usize::from(t_max > 0.0);
             }
         }
+        assert!(rays > 40, "only {rays} of 50 connections have a segment");
     }
 }
