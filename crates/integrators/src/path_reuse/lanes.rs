@@ -16,6 +16,7 @@ struct Vec3x4 {
 }
 
 impl Vec3x4 {
+    /// `v` in all four lanes.
     #[inline]
     fn splat(v: Vec3) -> Self {
         Self {
@@ -31,6 +32,7 @@ impl Vec3x4 {
         Vec3::new(self.x[lane], self.y[lane], self.z[lane])
     }
 
+    /// Sets vector `lane` to `v`.
     #[inline]
     fn set_lane(&mut self, lane: usize, v: Vec3) {
         (self.x[lane], self.y[lane], self.z[lane]) = (v.x, v.y, v.z);
@@ -42,6 +44,7 @@ impl Vec3x4 {
         self.x * other.x + self.y * other.y + self.z * other.z
     }
 
+    /// Differences, lane by lane.
     #[inline]
     fn minus(&self, other: &Self) -> Self {
         Self {
@@ -51,6 +54,7 @@ impl Vec3x4 {
         }
     }
 
+    /// Each lane's vector divided by that lane of `by`.
     #[inline]
     fn divided_by(&self, by: Vec4) -> Self {
         Self {
@@ -161,6 +165,7 @@ impl Connections {
 }
 
 impl FirstVertexLanes {
+    /// The first vertices of `paths` (at most [`MAX_BLOCK_PATHS`]), path k in lane k.
     #[inline]
     pub(super) fn of(paths: &[ReusablePath]) -> Self {
         let mut lanes = Self {
