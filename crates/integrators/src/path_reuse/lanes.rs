@@ -29,7 +29,12 @@ impl Vec3x4 {
     /// Vector `lane`.
     #[inline]
     fn lane(&self, lane: usize) -> Vec3 {
-        Vec3::new(self.x[lane], self.y[lane], self.z[lane])
+        // Through arrays: indexing a vector by a variable lane compiles to a jump table.
+        Vec3::new(
+            self.x.to_array()[lane],
+            self.y.to_array()[lane],
+            self.z.to_array()[lane],
+        )
     }
 
     /// Sets vector `lane` to `v`.
@@ -131,7 +136,7 @@ impl Connections {
     /// The density per unit area of `lane` (see [`ConnectionLanes::pdf_area`]).
     #[inline]
     pub(super) fn pdf_area(&self, lane: usize) -> f32 {
-        self.0[lane / 4].pdf_area[lane % 4]
+        self.0[lane / 4].pdf_area.to_array()[lane % 4]
     }
 
     /// The shadow ray of `lane` and its `t_max`.
@@ -142,13 +147,16 @@ impl Connections {
             origin: lanes.origin.lane(lane % 4),
             dir: lanes.dir.lane(lane % 4),
         };
-        (ray, lanes.t_max[lane % 4])
+        (ray, lanes.t_max.to_array()[lane % 4])
     }
 
     /// Counts `lane` out: its first vertex does not see y.
     #[inline]
     pub(super) fn occlude(&mut self, lane: usize) {
-        self.0[lane / 4].pdf_area[lane % 4] = 0.0;
+        let pdf_area = &mut self.0[lane / 4].pdf_area;
+        let mut lanes = pdf_area.to_array();
+        lanes[lane % 4] = 0.0;
+        *pdf_area = Vec4::from_array(lanes);
     }
 
     /// The sum of the densities, lane by lane in order.
