@@ -8,7 +8,7 @@ mod query;
 mod stack;
 mod walk;
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec3A};
 
 use crate::{Aabb, Hit, Ray, Shape, Sphere};
 use node::Node;
@@ -71,11 +71,18 @@ impl Accel {
     }
 
     /// The closest surface along `ray` with `0 < t < t_max`, if any.
+    #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        self.intersect_wide(ray.origin.into(), ray.dir.into(), t_max)
+    }
+
+    /// [`Accel::intersect`] for the ray from `origin` in the unit direction `dir`.
+    #[inline(never)]
+    fn intersect_wide(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> Option<Hit> {
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return None;
         }
-        let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        let query = RayQuery::new(origin, dir);
         let (nodes, geometry) = (&self.nodes[..], &self.geometry);
         let found = match self.stack {
             StackKind::Small => {
@@ -91,15 +98,22 @@ impl Accel {
                 walk::closest(nodes, geometry, &mut stack, &query, t_max)
             }
         };
-        found.map(|found| self.surface_hit(ray, found))
+        found.map(|found| self.surface_hit(origin.into(), dir.into(), found))
     }
 
     /// True when some surface lies along `ray` with `0 < t < t_max`.
+    #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.occluded_wide(ray.origin.into(), ray.dir.into(), t_max)
+    }
+
+    /// [`Accel::occluded`] for the ray from `origin` in the unit direction `dir`.
+    #[inline(never)]
+    fn occluded_wide(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> bool {
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return false;
         }
-        let query = RayQuery::new(ray.origin.into(), ray.dir.into());
+        let query = RayQuery::new(origin, dir);
         let (nodes, geometry) = (&self.nodes[..], &self.geometry);
         match self.stack {
             StackKind::Small => {
@@ -169,7 +183,7 @@ impl Accel {
     }
 
     /// Completes the hit of `ray` that traversal found.
-    fn surface_hit(&self, ray: &Ray, found: Found) -> Hit {
+    fn surface_hit(&self, origin: Vec3, dir: Vec3, found: Found) -> Hit {
         match found {
             Found::Triangle { packet, lane, hit } => {
                 let info = self.triangle_infos[4 * packet + lane];
@@ -202,7 +216,7 @@ impl Accel {
                 let geom = &self.geometry.spheres[index];
                 // The computed point only lands on the centre when the radius is below the float
                 // spacing at that position; the normal then faces the ray.
-                let outward = direction_of(ray.at(t) - sphere.center).unwrap_or(-ray.dir);
+                let outward = direction_of(origin + t * dir - sphere.center).unwrap_or(-dir);
                 let p = Vec3::from(geom.center) + geom.radius * outward;
                 let ng = if sphere.flip_normals {
                     -outward
