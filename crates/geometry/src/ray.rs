@@ -51,7 +51,7 @@ impl Ray {
     /// offsets (about `1.5e-5` relative). When the points are so close that the moved points
     /// coincide or pass each other, the ray has direction `ng` and `t_max = 0`, so nothing can
     /// block it.
-    #[inline]
+    #[inline(always)]
     pub fn spawn_to(p: Vec3, ng: Vec3, target_p: Vec3, target_ng: Vec3) -> (Self, f32) {
         let to_target = target_p - p;
         let origin = offset_ray_origin(p, ng, to_target);

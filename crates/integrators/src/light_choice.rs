@@ -36,7 +36,7 @@ pub(crate) struct ChosenLight {
 /// Picks a light and a point on it as `mode` says, from the shading point of `surface` with
 /// outgoing direction `wo` (local frame). `u_choice` and `u_point` come from the sampler; RIS
 /// derives the randomness for its candidates from them.
-#[inline]
+#[inline(always)]
 pub(crate) fn choose_light(
     mode: LightSelectionMode,
     selector: &LightSelector,
@@ -64,7 +64,7 @@ pub(crate) fn choose_light(
 }
 
 /// One candidate: the light sample and the BSDF towards it, `None` if it carries nothing.
-#[inline]
+#[inline(always)]
 fn evaluate(
     light: &Light,
     pmf: f32,

@@ -490,7 +490,7 @@ impl PathIntegrator {
     }
 
     /// The next direction of the walk: by the BSDF's sampling routine or without importance.
-    #[inline]
+    #[inline(always)]
     fn next_direction(
         &self,
         surface: &SurfaceHit<'_>,

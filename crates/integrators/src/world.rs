@@ -425,7 +425,7 @@ impl World {
 
     /// True when nothing blocks the segment from the surface point `p` (geometric normal `ng`)
     /// to `p_light` (normal `n_light`, zero for points), told to `tally` as one shadow ray.
-    #[inline]
+    #[inline(always)]
     pub fn unoccluded(
         &self,
         p: Vec3,
@@ -443,7 +443,7 @@ impl World {
     /// (geometric normal `ng`): the segment to its point, or for lights at infinity (the
     /// environment, directional lights) the ray escaping the scene. Told to `tally` as one
     /// shadow ray.
-    #[inline]
+    #[inline(always)]
     pub fn light_unoccluded(
         &self,
         p: Vec3,
