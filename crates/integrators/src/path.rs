@@ -25,6 +25,7 @@ use crate::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
+use materials::Bsdf;
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
 
@@ -499,10 +500,12 @@ impl PathIntegrator {
         u_dir: Vec2,
     ) -> Option<NextDirection> {
         if self.settings.sample_bsdf {
-            surface
-                .bsdf
-                .sample(wo, u_lobe, u_dir)
-                .map(NextDirection::from)
+            // The common case inlined: a diffuse BSDF's sample is a cosine-weighted direction.
+            let sampled = match surface.bsdf {
+                Bsdf::Diffuse(diffuse) => diffuse.sample(wo, u_dir),
+                bsdf => bsdf.sample(wo, u_lobe, u_dir),
+            };
+            sampled.map(NextDirection::from)
         } else {
             sample_without_importance(surface.bsdf, wo, u_lobe, u_dir)
         }
