@@ -13,7 +13,8 @@
 //!   CWBVH box test uses a fixed lower bound of `1e-4`, which misses nearby surfaces of small
 //!   scenes);
 //! - secondary rays leave surfaces through [`offset_ray_origin`] (Wächter and Binder 2019,
-//!   Ray Tracing Gems ch. 6), see [`Ray::spawn`] and [`Ray::spawn_to`].
+//!   Ray Tracing Gems ch. 6), see [`Ray::spawn`] and [`Ray::spawn_to`], and [`SpawnPoint`] for a
+//!   point that spawns several rays.
 //!
 //! Shapes are never flipped towards the ray: a [`Hit`] reports the geometric normal as the shape
 //! defines it, and one-sidedness is the BSDF's business (Mitsuba's convention).
@@ -44,6 +45,7 @@ mod mesh;
 mod offset;
 mod ray;
 mod shape;
+mod spawn_point;
 mod sphere;
 #[cfg(test)]
 mod test_rng;
@@ -57,4 +59,5 @@ pub use mesh::{MeshError, TriangleMesh};
 pub use offset::offset_ray_origin;
 pub use ray::Ray;
 pub use shape::Shape;
+pub use spawn_point::SpawnPoint;
 pub use sphere::Sphere;

@@ -7,7 +7,7 @@
 //! have tiny ulps but carry the rounding error of larger operands, so near the origin a fixed
 //! float offset is used instead.
 
-use glam::Vec3;
+use glam::{IVec3, Vec3};
 
 /// Coordinates with magnitude below this use the float offset (world units).
 const ORIGIN: f32 = 1.0 / 32.0;
@@ -25,7 +25,23 @@ const INT_SCALE: f32 = 256.0;
 #[inline]
 pub fn offset_ray_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
     let n = if ng.dot(dir) < 0.0 { -ng } else { ng };
-    let of_i = (INT_SCALE * n).as_ivec3();
+    moved_along(p, n, (INT_SCALE * n).as_ivec3())
+}
+
+/// [`offset_ray_origin`] to both sides at once: `p` moved to the side of `ng` and to the side of
+/// `-ng`, the integer offsets converted once for both (truncation is odd, so the other side's
+/// are their negations): bit for bit the points `offset_ray_origin(p, ng, ng)` and
+/// `offset_ray_origin(p, ng, -ng)`.
+#[inline]
+pub(crate) fn offset_both_sides(p: Vec3, ng: Vec3) -> (Vec3, Vec3) {
+    let of_i = (INT_SCALE * ng).as_ivec3();
+    (moved_along(p, ng, of_i), moved_along(p, -ng, -of_i))
+}
+
+/// `p` moved along the unit vector `n`: by `of_i` = `INT_SCALE * n` (truncated) units in the last
+/// place per coordinate, and by `FLOAT_SCALE * n` for coordinates near zero.
+#[inline(always)]
+fn moved_along(p: Vec3, n: Vec3, of_i: IVec3) -> Vec3 {
     let p_i = Vec3::new(
         offset_ulps(p.x, of_i.x),
         offset_ulps(p.y, of_i.y),

@@ -22,7 +22,7 @@ use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{DirectSamples, LightSelectionMode, Mis, PathSettings};
 use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf};
 use crate::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World};
-use geometry::Ray;
+use geometry::SpawnPoint;
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
 use materials::Bsdf;
@@ -220,12 +220,13 @@ impl PathIntegrator {
                 break;
             }
             let wo = surface.frame.to_local(-ray.dir);
+            let point = SpawnPoint::new(surface.hit.p, surface.hit.ng);
             if REUSE {
                 if depth == 1 {
-                    first = FirstVertex::at(&surface, wo);
+                    first = FirstVertex::at(&surface, &point, wo);
                 } else if depth == 2
                     && first.is_some()
-                    && let Some(found) = SecondVertex::at(&surface)
+                    && let Some(found) = SecondVertex::at(&surface, &point)
                 {
                     second = Some(found);
                     own = radiance;
@@ -235,14 +236,15 @@ impl PathIntegrator {
                 }
             }
             if let Some(samples) = settings.direct_samples {
-                radiance += self.direct_samples(world, &surface, wo, samples, sampler, counters);
+                radiance +=
+                    self.direct_samples(world, &surface, &point, wo, samples, sampler, counters);
                 break;
             }
 
             // No light sampling at the last vertex: the light would be one vertex too many.
             if !last {
-                radiance +=
-                    throughput * self.light_at_vertex(world, &surface, wo, sampler, counters);
+                radiance += throughput
+                    * self.light_at_vertex(world, &surface, &point, wo, sampler, counters);
             }
 
             let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
@@ -280,11 +282,7 @@ impl PathIntegrator {
                 pdf_dir: next.pdf_solid_angle,
                 delta: next.is_delta,
             };
-            ray = Ray::spawn(
-                surface.hit.p,
-                surface.hit.ng,
-                surface.frame.to_world(next.wi),
-            );
+            ray = point.spawn(surface.frame.to_world(next.wi));
             t_max = f32::INFINITY;
             depth += u32::from(!passes_null);
         }
@@ -313,6 +311,7 @@ impl PathIntegrator {
         &self,
         world: &World,
         surface: &SurfaceHit<'_>,
+        point: &SpawnPoint,
         wo: Vec3,
         sampler: &mut impl Sampler,
         counters: &mut impl RayTally,
@@ -323,7 +322,9 @@ impl PathIntegrator {
             if surface.bsdf.is_delta() {
                 return Vec3::ZERO;
             }
-            self.direct_light(world, surface, wo, u_choice, u_point, ONE_EACH, counters)
+            self.direct_light(
+                world, surface, point, wo, u_choice, u_point, ONE_EACH, counters,
+            )
         } else if surface.bsdf.is_delta() {
             Vec3::ZERO
         } else {
@@ -334,10 +335,12 @@ impl PathIntegrator {
     /// Mitsuba's `direct` integrator at the camera ray's hit `surface`: `samples.light` light
     /// samples and `samples.bsdf` BSDF samples, each traced to the emission it finds, MIS-weighted
     /// by their counts and each divided by its count.
+    #[allow(clippy::too_many_arguments)]
     fn direct_samples(
         &self,
         world: &World,
         surface: &SurfaceHit<'_>,
+        point: &SpawnPoint,
         wo: Vec3,
         samples: DirectSamples,
         sampler: &mut impl Sampler,
@@ -354,9 +357,9 @@ impl PathIntegrator {
                 let u_choice = next_1d_if(sampler, self.draws_light_choice);
                 let u_point = sampler.next_2d();
                 if !surface.bsdf.is_delta() {
-                    radiance += self
-                        .direct_light(world, surface, wo, u_choice, u_point, counts, counters)
-                        / counts.light;
+                    radiance += self.direct_light(
+                        world, surface, point, wo, u_choice, u_point, counts, counters,
+                    ) / counts.light;
                 }
             }
         } else if samples.light > 0 && !surface.bsdf.is_delta() {
@@ -373,11 +376,7 @@ impl PathIntegrator {
                 pdf_dir: next.pdf_solid_angle,
                 delta: next.is_delta,
             };
-            let ray = Ray::spawn(
-                surface.hit.p,
-                surface.hit.ng,
-                surface.frame.to_world(next.wi),
-            );
+            let ray = point.spawn(surface.frame.to_world(next.wi));
             let weight = next.weight / counts.bsdf;
             radiance += match world.intersect(&ray, counters, &mut slot) {
                 Some(found) => self.emission_found(
@@ -453,6 +452,7 @@ impl PathIntegrator {
         &self,
         world: &World,
         surface: &SurfaceHit<'_>,
+        point: &SpawnPoint,
         wo: Vec3,
         u_choice: f32,
         u_point: Vec2,
@@ -474,7 +474,7 @@ impl PathIntegrator {
             return Vec3::ZERO;
         };
         let sample = chosen.sample;
-        if !world.light_unoccluded(surface.hit.p, surface.hit.ng, &sample, counters) {
+        if !world.light_unoccluded(point, &sample, counters) {
             return Vec3::ZERO;
         }
         let mis_weight = if sample.is_delta {

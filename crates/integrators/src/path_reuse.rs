@@ -27,7 +27,7 @@
 //! counts.
 
 use crate::{RayTally, SurfaceHit, World};
-use geometry::offset_ray_origin;
+use geometry::SpawnPoint;
 use glam::Vec3;
 use materials::{Bsdf, Diffuse};
 use sampling::Frame;
@@ -43,51 +43,28 @@ pub const MAX_BLOCK_PATHS: usize = 16;
 /// vertices.
 #[derive(Clone, Copy, Debug)]
 pub struct FirstVertex {
-    /// Position (world units).
-    p: Vec3,
-    /// Unit geometric normal.
-    ng: Vec3,
+    /// Position, geometric normal, and where its shadow rays start (moved off the surface to
+    /// either side once per vertex rather than once per connection).
+    point: SpawnPoint,
     /// The shading frame its BSDF sees.
     frame: Frame,
     /// Direction to the camera, in `frame`.
     wo: Vec3,
     /// Its BSDF.
     diffuse: Diffuse,
-    /// Where its shadow rays start ([`Offsets`]).
-    offsets: Offsets,
-}
-
-/// A surface point moved off its surface to either side, as [`offset_ray_origin`] moves it for
-/// a ray leaving or reaching it (which depends on the direction only through the side): computed
-/// once per vertex rather than once per connection.
-#[derive(Clone, Copy, Debug)]
-struct Offsets {
-    /// The point moved to the side its geometric normal points to, and to the other.
-    front: Vec3,
-    back: Vec3,
-}
-
-impl Offsets {
-    fn of(p: Vec3, ng: Vec3) -> Self {
-        Self {
-            front: offset_ray_origin(p, ng, ng),
-            back: offset_ray_origin(p, ng, -ng),
-        }
-    }
 }
 
 impl FirstVertex {
-    /// The first vertex at `surface`, seen from `wo` (local frame), if its BSDF is diffuse and
-    /// reflects something: a black one never continues its path, so it samples no second vertex.
-    pub(crate) fn at(surface: &SurfaceHit<'_>, wo: Vec3) -> Option<Self> {
+    /// The first vertex at `surface` (whose point is `point`), seen from `wo` (local frame), if
+    /// its BSDF is diffuse and reflects something: a black one never continues its path, so it
+    /// samples no second vertex.
+    pub(crate) fn at(surface: &SurfaceHit<'_>, point: &SpawnPoint, wo: Vec3) -> Option<Self> {
         match surface.bsdf {
             Bsdf::Diffuse(diffuse) if diffuse.reflectance() != Vec3::ZERO => Some(Self {
-                p: surface.hit.p,
-                ng: surface.hit.ng,
+                point: *point,
                 frame: surface.frame,
                 wo,
                 diffuse: *diffuse,
-                offsets: Offsets::of(surface.hit.p, surface.hit.ng),
             }),
             _ => None,
         }
@@ -98,27 +75,22 @@ impl FirstVertex {
 /// path's first vertex (W m⁻² sr⁻¹, RGB; its own emission not included).
 #[derive(Clone, Copy, Debug)]
 pub struct SecondVertex {
-    /// Position (world units).
-    p: Vec3,
-    /// Unit geometric normal.
-    ng: Vec3,
+    /// Position, geometric normal, and where shadow rays to it end.
+    point: SpawnPoint,
     /// Unit shading normal.
     ns: Vec3,
-    /// Where shadow rays to it end ([`Offsets`]).
-    offsets: Offsets,
     /// The estimate of the radiance reflected towards the path's first vertex.
     pub(crate) reflected: Vec3,
 }
 
 impl SecondVertex {
-    /// The second vertex at `surface` if its BSDF is diffuse (the radiance it reflects is then
-    /// the same towards every point on one side of it); `reflected` is filled in later.
-    pub(crate) fn at(surface: &SurfaceHit<'_>) -> Option<Self> {
+    /// The second vertex at `surface` (whose point is `point`) if its BSDF is diffuse (the
+    /// radiance it reflects is then the same towards every point on one side of it);
+    /// `reflected` is filled in later.
+    pub(crate) fn at(surface: &SurfaceHit<'_>, point: &SpawnPoint) -> Option<Self> {
         matches!(surface.bsdf, Bsdf::Diffuse(_)).then_some(Self {
-            p: surface.hit.p,
-            ng: surface.hit.ng,
+            point: *point,
             ns: surface.hit.ns,
-            offsets: Offsets::of(surface.hit.p, surface.hit.ng),
             reflected: Vec3::ZERO,
         })
     }
@@ -128,8 +100,8 @@ impl SecondVertex {
     /// material's side and a diffuse lobe's hemisphere follow the shading normal, ray offsets
     /// the geometric one).
     fn side_of(&self, x: Vec3) -> (bool, bool) {
-        let to_x = x - self.p;
-        (self.ng.dot(to_x) > 0.0, self.ns.dot(to_x) > 0.0)
+        let to_x = x - self.point.p;
+        (self.point.ng.dot(to_x) > 0.0, self.ns.dot(to_x) > 0.0)
     }
 }
 
@@ -169,7 +141,7 @@ pub fn combine(
         let (Some(x_j), Some(y)) = (&path.first, &path.second) else {
             continue;
         };
-        let mut connections = firsts.towards(y, y.side_of(x_j.p));
+        let mut connections = firsts.towards(y, y.side_of(x_j.point.p));
         let counted = connections.counted();
         // Path j's own second vertex is what its ray found: visible.
         for k in lanes_of(counted & !(1 << j)) {
@@ -236,18 +208,14 @@ mod tests {
         ReusablePath {
             own: Vec3::splat(own),
             first: Some(FirstVertex {
-                p: x.0,
-                ng: x.1,
+                point: SpawnPoint::new(x.0, x.1),
                 frame: Frame::from_normal(x.1),
                 wo: Vec3::Z,
                 diffuse: Diffuse::new(ALBEDO),
-                offsets: Offsets::of(x.0, x.1),
             }),
             second: second.map(|(p, n)| SecondVertex {
-                p,
-                ng: n,
+                point: SpawnPoint::new(p, n),
                 ns: n,
-                offsets: Offsets::of(p, n),
                 reflected: REFLECTED,
             }),
         }
@@ -359,10 +327,8 @@ mod tests {
         let mut rays = 0;
         for (q, n) in seconds.into_iter().flat_map(|(q, n)| [(q, n), (q, -n)]) {
             let y = SecondVertex {
-                p: q,
-                ng: n,
+                point: SpawnPoint::new(q, n),
                 ns: n,
-                offsets: Offsets::of(q, n),
                 reflected: REFLECTED,
             };
             let connections = lanes.towards(&y, y.side_of(firsts[0].0));

@@ -2,7 +2,7 @@
 //! in flat arrays indexed by shape.
 
 use crate::{CameraRay, RayTally};
-use geometry::{Accel, Hit, Ray};
+use geometry::{Accel, Hit, Ray, SpawnPoint};
 use glam::{Affine2, Vec3};
 use lights::{Light, LightSample};
 use materials::{BitmapTexture, Bsdf};
@@ -439,32 +439,23 @@ impl World {
         !self.accel.occluded(&ray, distance)
     }
 
-    /// True when nothing blocks the light of `sample` from reaching the surface point `p`
-    /// (geometric normal `ng`): the segment to its point, or for lights at infinity (the
-    /// environment, directional lights) the ray escaping the scene. Told to `tally` as one
-    /// shadow ray.
+    /// True when nothing blocks the light of `sample` from reaching the surface point `point`:
+    /// the segment to its point, or for lights at infinity (the environment, directional
+    /// lights) the ray escaping the scene. Told to `tally` as one shadow ray.
     #[inline(always)]
     pub fn light_unoccluded(
         &self,
-        p: Vec3,
-        ng: Vec3,
+        point: &SpawnPoint,
         sample: &LightSample,
         tally: &mut impl RayTally,
     ) -> bool {
-        if sample.distance.is_finite() {
-            self.unoccluded(p, ng, sample.p_light, sample.n_light, tally)
+        let (ray, t_max) = if sample.distance.is_finite() {
+            point.spawn_to(sample.p_light, sample.n_light)
         } else {
-            self.escapes(p, ng, sample.wi, tally)
-        }
-    }
-
-    /// True when nothing blocks the ray from `p` (geometric normal `ng`) in direction `dir` from
-    /// escaping the scene, told to `tally` as one shadow ray.
-    #[inline]
-    pub fn escapes(&self, p: Vec3, ng: Vec3, dir: Vec3, tally: &mut impl RayTally) -> bool {
-        let ray = Ray::spawn(p, ng, dir);
-        tally.shadow_ray(&ray, f32::INFINITY);
-        !self.accel.occluded(&ray, f32::INFINITY)
+            (point.spawn(sample.wi), f32::INFINITY)
+        };
+        tally.shadow_ray(&ray, t_max);
+        !self.accel.occluded(&ray, t_max)
     }
 
     /// Radiance emitted by the surface of `surface` towards the unit direction `w`, one-sided by

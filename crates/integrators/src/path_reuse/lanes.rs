@@ -95,7 +95,7 @@ pub(super) struct FirstVertexLanes {
     /// Unit geometric normals.
     ng: [Vec3x4; GROUPS],
     /// The positions moved off their surfaces to the side of `ng` and to the other
-    /// ([`super::Offsets`]).
+    /// ([`geometry::SpawnPoint`]).
     front: [Vec3x4; GROUPS],
     back: [Vec3x4; GROUPS],
     /// 1/π where the lane's cosine-sampling density counts, else 0 (sr⁻¹).
@@ -190,11 +190,11 @@ impl FirstVertexLanes {
                 continue;
             };
             let (group, lane) = (k / 4, k % 4);
-            lanes.p[group].set_lane(lane, x.p);
+            lanes.p[group].set_lane(lane, x.point.p);
             lanes.n[group].set_lane(lane, x.frame.n);
-            lanes.ng[group].set_lane(lane, x.ng);
-            lanes.front[group].set_lane(lane, x.offsets.front);
-            lanes.back[group].set_lane(lane, x.offsets.back);
+            lanes.ng[group].set_lane(lane, x.point.ng);
+            lanes.front[group].set_lane(lane, x.point.front);
+            lanes.back[group].set_lane(lane, x.point.back);
             // The diffuse lobe reflects nothing towards a camera behind it.
             lanes.inv_pi[group][lane] = if x.wo.z > 0.0 { FRAC_1_PI } else { 0.0 };
             lanes.albedo[k] = x.diffuse.reflectance();
@@ -210,11 +210,12 @@ impl FirstVertexLanes {
     pub(super) fn towards(&self, y: &SecondVertex, side: (bool, bool)) -> Connections {
         // Seen from y the first vertex lies along −d: on the front of a normal n where n·d < 0.
         let (front_ng, front_ns) = (BVec4A::splat(side.0), BVec4A::splat(side.1));
-        let (y_p, y_ng, y_ns) = (Vec3x4::splat(y.p), Vec3x4::splat(y.ng), Vec3x4::splat(y.ns));
-        let (y_front, y_back) = (
-            Vec3x4::splat(y.offsets.front),
-            Vec3x4::splat(y.offsets.back),
+        let (y_p, y_ng, y_ns) = (
+            Vec3x4::splat(y.point.p),
+            Vec3x4::splat(y.point.ng),
+            Vec3x4::splat(y.ns),
         );
+        let (y_front, y_back) = (Vec3x4::splat(y.point.front), Vec3x4::splat(y.point.back));
         let mut connections = Connections([ConnectionLanes::default(); GROUPS]);
         for (group, out) in connections.0.iter_mut().enumerate() {
             let d = y_p.minus(&self.p[group]);

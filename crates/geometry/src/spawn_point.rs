@@ -1,0 +1,128 @@
+//! A surface point that spawns several rays: its ray origins on both sides computed once.
+
+use glam::Vec3;
+
+use crate::Ray;
+use crate::offset::offset_both_sides;
+
+/// A surface point with its position moved off the surface to either side, as
+/// [`crate::offset_ray_origin`] moves it for a ray leaving it (which depends on the direction only
+/// through the side): for a path vertex that spawns a shadow ray and the next ray, or that other
+/// paths connect to. Its rays are bit for bit those of [`Ray::spawn`] and [`Ray::spawn_to`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpawnPoint {
+    /// Position on the surface (world units).
+    pub p: Vec3,
+    /// Unit geometric normal.
+    pub ng: Vec3,
+    /// `p` moved to the side `ng` points to (world units).
+    pub front: Vec3,
+    /// `p` moved to the other side (world units).
+    pub back: Vec3,
+}
+
+impl SpawnPoint {
+    /// The surface point `p` with unit geometric normal `ng`.
+    #[inline]
+    pub fn new(p: Vec3, ng: Vec3) -> Self {
+        let (front, back) = offset_both_sides(p, ng);
+        Self { p, ng, front, back }
+    }
+
+    /// The origin of a ray leaving towards `dir` (any length): `front` unless `dir` points below
+    /// the surface (`dir · ng < 0`).
+    #[inline]
+    pub fn origin_towards(&self, dir: Vec3) -> Vec3 {
+        if self.ng.dot(dir) < 0.0 {
+            self.back
+        } else {
+            self.front
+        }
+    }
+
+    /// [`Ray::spawn`] from this point in the direction of `dir` (normalised here).
+    #[inline]
+    pub fn spawn(&self, dir: Vec3) -> Ray {
+        let dir = dir.normalize();
+        Ray {
+            origin: self.origin_towards(dir),
+            dir,
+        }
+    }
+
+    /// [`Ray::spawn_to`] from this point to `target_p` (unit geometric normal `target_ng`, zero
+    /// for a point light): the shadow ray and its `t_max`.
+    #[inline(always)]
+    pub fn spawn_to(&self, target_p: Vec3, target_ng: Vec3) -> (Ray, f32) {
+        let to_target = target_p - self.p;
+        let end = crate::offset_ray_origin(target_p, target_ng, -to_target);
+        Ray::between(self.origin_towards(to_target), end, to_target, self.ng)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::TestRng;
+
+    /// Points near and far from the origin, unit normals, and directions that include the
+    /// tangent plane (`dir · ng` exactly zero) and both sides.
+    fn cases() -> Vec<(Vec3, Vec3, Vec3)> {
+        let mut rng = TestRng(7);
+        let mut cases = Vec::new();
+        for scale in [1e-3, 0.02, 1.0, 40.0, 3e4] {
+            for _ in 0..200 {
+                let p = scale * rng.vec();
+                let ng = rng.vec().normalize();
+                let dir = rng.vec();
+                cases.push((p, ng, dir));
+                cases.push((p, ng, -dir));
+                cases.push((p, ng, ng.any_orthonormal_vector()));
+            }
+        }
+        cases.push((Vec3::ZERO, Vec3::Z, Vec3::X));
+        cases.push((
+            Vec3::new(1e4, -3.0, 7.0),
+            Vec3::Y,
+            Vec3::new(1.0, 0.0, -2.0),
+        ));
+        cases.push((Vec3::new(-0.0, 5.0, 0.0), Vec3::NEG_Y, Vec3::Y));
+        cases
+    }
+
+    #[test]
+    fn rays_are_bit_for_bit_those_of_ray_spawn_and_spawn_to() {
+        let mut tangent = 0;
+        for (p, ng, dir) in cases() {
+            let point = SpawnPoint::new(p, ng);
+            let what = format!("p {p:?}, ng {ng:?}, dir {dir:?}");
+            assert_eq!(point.spawn(dir), Ray::spawn(p, ng, dir), "spawn: {what}");
+            let target = p + 3.0 * dir;
+            assert_eq!(
+                point.spawn_to(target, -ng),
+                Ray::spawn_to(p, ng, target, -ng),
+                "spawn_to: {what}"
+            );
+            tangent += usize::from(ng.dot(dir) == 0.0);
+        }
+        assert!(tangent > 0, "no case in the tangent plane");
+    }
+
+    #[test]
+    fn the_two_sides_are_offset_ray_origin_to_either_side() {
+        for (p, ng, _) in cases() {
+            let point = SpawnPoint::new(p, ng);
+            assert_eq!(
+                point.front,
+                crate::offset_ray_origin(p, ng, ng),
+                "front at {p:?}"
+            );
+            assert_eq!(
+                point.back,
+                crate::offset_ray_origin(p, ng, -ng),
+                "back at {p:?}"
+            );
+            assert!((point.front - p).dot(ng) > 0.0 && (point.back - p).dot(ng) < 0.0);
+        }
+    }
+}
