@@ -74,11 +74,12 @@ impl Accel {
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         self.intersect_wide(ray.origin.into(), ray.dir.into(), t_max)
+            .map(WideHit::into_hit)
     }
 
     /// [`Accel::intersect`] for the ray from `origin` in the unit direction `dir`.
     #[inline(never)]
-    fn intersect_wide(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> Option<Hit> {
+    fn intersect_wide(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> Option<WideHit> {
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return None;
         }
@@ -183,7 +184,7 @@ impl Accel {
     }
 
     /// Completes the hit of `ray` that traversal found.
-    fn surface_hit(&self, origin: Vec3, dir: Vec3, found: Found) -> Hit {
+    fn surface_hit(&self, origin: Vec3, dir: Vec3, found: Found) -> WideHit {
         match found {
             Found::Triangle { packet, lane, hit } => {
                 let info = self.triangle_infos[4 * packet + lane];
@@ -198,14 +199,13 @@ impl Accel {
                     .as_ref()
                     .and_then(|n| direction_of(n[i0] * b.x + n[i1] * b.y + n[i2] * b.z))
                     .map_or(info.ng, |ns| if ns.dot(info.ng) < 0.0 { -ns } else { ns });
-                Hit {
+                WideHit {
                     t: hit.t,
-                    p,
-                    ng: info.ng,
-                    ns,
-                    bary: b,
-                    shape: info.shape,
-                    prim: info.prim,
+                    p: p.into(),
+                    ng: info.ng.into(),
+                    ns: ns.into(),
+                    bary: b.into(),
+                    ids: WideHit::ids(info.shape, info.prim),
                 }
             }
             Found::Sphere { index, t } => {
@@ -223,16 +223,49 @@ impl Accel {
                 } else {
                     outward
                 };
-                Hit {
+                WideHit {
                     t,
-                    p,
-                    ng,
-                    ns: ng,
-                    bary: Vec3::ZERO,
-                    shape: info.shape,
-                    prim: 0,
+                    p: p.into(),
+                    ng: ng.into(),
+                    ns: ng.into(),
+                    bary: Vec3A::ZERO,
+                    ids: WideHit::ids(info.shape, 0),
                 }
             }
+        }
+    }
+}
+
+/// A [`Hit`] as the traversal hands it to [`Accel::intersect`], laid out so that each field is
+/// written by one store as wide as the caller's loads of it: its vectors padded to 16 bytes, the
+/// shape and primitive indices one 64-bit word (a `Vec3` is stored as 8 + 4 bytes, and a load
+/// spanning two stores cannot be forwarded from the store buffer).
+struct WideHit {
+    t: f32,
+    p: Vec3A,
+    ng: Vec3A,
+    ns: Vec3A,
+    bary: Vec3A,
+    /// The shape index in the low 32 bits, the primitive index in the high 32.
+    ids: u64,
+}
+
+impl WideHit {
+    #[inline(always)]
+    fn ids(shape: u32, prim: u32) -> u64 {
+        u64::from(shape) | (u64::from(prim) << 32)
+    }
+
+    #[inline(always)]
+    fn into_hit(self) -> Hit {
+        Hit {
+            t: self.t,
+            p: self.p.into(),
+            ng: self.ng.into(),
+            ns: self.ns.into(),
+            bary: self.bary.into(),
+            shape: self.ids as u32,
+            prim: (self.ids >> 32) as u32,
         }
     }
 }
