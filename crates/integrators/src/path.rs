@@ -195,7 +195,7 @@ impl PathIntegrator {
             } else {
                 world.intersect_within(&ray, t_max, counters, slot)
             };
-            let Some(surface) = found else {
+            let Some(surface) = &found else {
                 if !hidden {
                     radiance +=
                         self.background_found(world, ray.dir, &previous, ONE_EACH, throughput);

@@ -259,16 +259,15 @@ impl World {
         Ok(())
     }
 
-    /// The BSDF a ray along `dir` sees of `material`, and its shading frame (`frame` unless the
-    /// back of a [`materials::TwoSided`] faces the ray).
+    /// The BSDF a ray along `dir` sees of `material` with shading frame `frame`, and whether it
+    /// sees it through the mirrored frame (the back of a [`materials::TwoSided`] faces the ray).
+    /// The frame itself is left to the caller to mirror, so that it is not copied through the
+    /// returned pair.
     #[inline(always)]
-    fn facing(&self, material: MaterialId, frame: Frame, dir: Vec3) -> (&Bsdf, Frame) {
+    fn facing(&self, material: MaterialId, frame: &Frame, dir: Vec3) -> (&Bsdf, bool) {
         match &self.materials[material as usize] {
-            Bsdf::TwoSided(two_sided) => match two_sided.facing(frame.to_local(-dir)) {
-                (side, true) => (side, frame.mirrored()),
-                (side, false) => (side, frame),
-            },
-            bsdf => (bsdf, frame),
+            Bsdf::TwoSided(two_sided) => two_sided.facing(frame.to_local(-dir)),
+            bsdf => (bsdf, false),
         }
     }
 
@@ -281,10 +280,10 @@ impl World {
         &'s self,
         material: MaterialId,
         hit: &Hit,
-        frame: Frame,
+        frame: &Frame,
         dir: Vec3,
         slot: &'s mut BsdfSlot,
-    ) -> (&'s Bsdf, Frame) {
+    ) -> (&'s Bsdf, bool) {
         match &self.textures[material as usize] {
             Some(MaterialTexture::Checkerboard(checker)) => {
                 let chosen = if checker.is_odd(self.accel.uv(hit)) {
@@ -295,7 +294,7 @@ impl World {
                 self.facing(chosen, frame, dir)
             }
             Some(bitmap_texture) => {
-                let (side, frame) = self.facing(material, frame, dir);
+                let (side, mirrored) = self.facing(material, frame, dir);
                 let uv = self.accel.uv(hit);
                 let textured = match bitmap_texture {
                     MaterialTexture::DiffuseReflectance(bitmap) => {
@@ -313,8 +312,8 @@ impl World {
                     MaterialTexture::Checkerboard(_) => None,
                 };
                 match textured {
-                    Some(textured) => (slot.0.insert(textured), frame),
-                    None => (side, frame),
+                    Some(textured) => (slot.0.insert(textured), mirrored),
+                    None => (side, mirrored),
                 }
             }
             None => self.facing(material, frame, dir),
@@ -375,14 +374,14 @@ impl World {
         } else {
             Frame::from_normal_and_tangent(hit.ns, self.accel.dp_du(&hit))
         };
-        let (bsdf, frame) = if self.textures.is_empty() {
-            self.facing(material, frame, dir)
+        let (bsdf, mirrored) = if self.textures.is_empty() {
+            self.facing(material, &frame, dir)
         } else {
-            self.textured_facing(material, &hit, frame, dir, slot)
+            self.textured_facing(material, &hit, &frame, dir, slot)
         };
         SurfaceHit {
             hit,
-            frame,
+            frame: if mirrored { frame.mirrored() } else { frame },
             bsdf,
             light: self.shape_light[shape],
         }
