@@ -206,7 +206,7 @@ impl PathIntegrator {
             if !hidden && !left_to_light_tracer {
                 radiance += self.emission_found(
                     world,
-                    &surface,
+                    surface,
                     ray.dir,
                     &previous,
                     seen_through_delta,
@@ -223,10 +223,10 @@ impl PathIntegrator {
             let point = SpawnPoint::new(surface.hit.p, surface.hit.ng);
             if REUSE {
                 if depth == 1 {
-                    first = FirstVertex::at(&surface, &point, wo);
+                    first = FirstVertex::at(surface, &point, wo);
                 } else if depth == 2
                     && first.is_some()
-                    && let Some(found) = SecondVertex::at(&surface, &point)
+                    && let Some(found) = SecondVertex::at(surface, &point)
                 {
                     second = Some(found);
                     own = radiance;
@@ -237,19 +237,19 @@ impl PathIntegrator {
             }
             if let Some(samples) = settings.direct_samples {
                 radiance +=
-                    self.direct_samples(world, &surface, &point, wo, samples, sampler, counters);
+                    self.direct_samples(world, surface, &point, wo, samples, sampler, counters);
                 break;
             }
 
             // No light sampling at the last vertex: the light would be one vertex too many.
             if !last {
                 radiance += throughput
-                    * self.light_at_vertex(world, &surface, &point, wo, sampler, counters);
+                    * self.light_at_vertex(world, surface, &point, wo, sampler, counters);
             }
 
             let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
             let u_dir = sampler.next_2d();
-            let Some(next) = self.next_direction(&surface, wo, u_lobe, u_dir) else {
+            let Some(next) = self.next_direction(surface, wo, u_lobe, u_dir) else {
                 break;
             };
             let passes_null = settings.skip_null_vertices && next.is_null;
