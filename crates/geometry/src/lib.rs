@@ -51,6 +51,7 @@ mod sphere;
 mod test_rng;
 mod triangle;
 mod triangle4;
+mod x4;
 
 pub use aabb::Aabb;
 pub use accel::Accel;
@@ -61,3 +62,4 @@ pub use ray::Ray;
 pub use shape::Shape;
 pub use spawn_point::SpawnPoint;
 pub use sphere::Sphere;
+pub use x4::{Rayx4, SpawnPointx4, Vec3x4};

@@ -3,82 +3,9 @@
 //! vertex, as [`super::combine`] needs them.
 
 use super::{MAX_BLOCK_PATHS, ReusablePath, SecondVertex};
-use geometry::Ray;
+use geometry::{Ray, Rayx4, SpawnPointx4, Vec3x4};
 use glam::{BVec4A, Vec3, Vec4};
 use std::f32::consts::FRAC_1_PI;
-
-/// Four 3-vectors, coordinate by coordinate (structure of arrays).
-#[derive(Clone, Copy, Debug, Default)]
-struct Vec3x4 {
-    x: Vec4,
-    y: Vec4,
-    z: Vec4,
-}
-
-impl Vec3x4 {
-    /// `v` in all four lanes.
-    #[inline]
-    fn splat(v: Vec3) -> Self {
-        Self {
-            x: Vec4::splat(v.x),
-            y: Vec4::splat(v.y),
-            z: Vec4::splat(v.z),
-        }
-    }
-
-    /// Vector `lane`.
-    #[inline]
-    fn lane(&self, lane: usize) -> Vec3 {
-        // Through arrays: indexing a vector by a variable lane compiles to a jump table.
-        Vec3::new(
-            self.x.to_array()[lane],
-            self.y.to_array()[lane],
-            self.z.to_array()[lane],
-        )
-    }
-
-    /// Sets vector `lane` to `v`.
-    #[inline]
-    fn set_lane(&mut self, lane: usize, v: Vec3) {
-        (self.x[lane], self.y[lane], self.z[lane]) = (v.x, v.y, v.z);
-    }
-
-    /// Dot products, summed x, y, z in that order (as [`Vec3::dot`] sums them).
-    #[inline]
-    fn dot(&self, other: &Self) -> Vec4 {
-        self.x * other.x + self.y * other.y + self.z * other.z
-    }
-
-    /// Differences, lane by lane.
-    #[inline]
-    fn minus(&self, other: &Self) -> Self {
-        Self {
-            x: self.x - other.x,
-            y: self.y - other.y,
-            z: self.z - other.z,
-        }
-    }
-
-    /// Each lane's vector divided by that lane of `by`.
-    #[inline]
-    fn divided_by(&self, by: Vec4) -> Self {
-        Self {
-            x: self.x / by,
-            y: self.y / by,
-            z: self.z / by,
-        }
-    }
-
-    /// `if_true`'s vectors where `mask` is set, `if_false`'s elsewhere.
-    #[inline]
-    fn select(mask: BVec4A, if_true: &Self, if_false: &Self) -> Self {
-        Self {
-            x: Vec4::select(mask, if_true.x, if_false.x),
-            y: Vec4::select(mask, if_true.y, if_false.y),
-            z: Vec4::select(mask, if_true.z, if_false.z),
-        }
-    }
-}
 
 /// Groups of four lanes in a block of [`MAX_BLOCK_PATHS`] paths.
 const GROUPS: usize = MAX_BLOCK_PATHS / 4;
@@ -88,16 +15,10 @@ const GROUPS: usize = MAX_BLOCK_PATHS / 4;
 /// without a first vertex, or whose first vertex faces away from the camera, has `inv_pi` zero,
 /// hence density zero everywhere.
 pub(super) struct FirstVertexLanes {
-    /// Positions (world units).
-    p: [Vec3x4; GROUPS],
+    /// Positions, geometric normals, and the positions moved off their surfaces to either side.
+    points: [SpawnPointx4; GROUPS],
     /// Unit shading normals (the BSDF's +z).
     n: [Vec3x4; GROUPS],
-    /// Unit geometric normals.
-    ng: [Vec3x4; GROUPS],
-    /// The positions moved off their surfaces to the side of `ng` and to the other
-    /// ([`geometry::SpawnPoint`]).
-    front: [Vec3x4; GROUPS],
-    back: [Vec3x4; GROUPS],
     /// 1/π where the lane's cosine-sampling density counts, else 0 (sr⁻¹).
     inv_pi: [Vec4; GROUPS],
     /// The RGB albedos (zero in lanes without a first vertex).
@@ -113,9 +34,8 @@ struct ConnectionLanes {
     /// The lanes whose density is not zero, as a bit mask.
     counted: u32,
     /// The shadow ray from each lane's first vertex to y, as [`Ray::between`] makes it from the
-    /// two ends moved off their surfaces: origin, unit direction and `t_max`.
-    origin: Vec3x4,
-    dir: Vec3x4,
+    /// two ends moved off their surfaces, and its `t_max`.
+    rays: Rayx4,
     t_max: Vec4,
 }
 
@@ -143,11 +63,7 @@ impl Connections {
     #[inline]
     pub(super) fn ray(&self, lane: usize) -> (Ray, f32) {
         let lanes = &self.0[lane / 4];
-        let ray = Ray {
-            origin: lanes.origin.lane(lane % 4),
-            dir: lanes.dir.lane(lane % 4),
-        };
-        (ray, lanes.t_max.to_array()[lane % 4])
+        (lanes.rays.lane(lane % 4), lanes.t_max.to_array()[lane % 4])
     }
 
     /// Counts `lane` out: its first vertex does not see y.
@@ -177,11 +93,8 @@ impl FirstVertexLanes {
     #[inline]
     pub(super) fn of(paths: &[ReusablePath]) -> Self {
         let mut lanes = Self {
-            p: [Vec3x4::default(); GROUPS],
+            points: [SpawnPointx4::default(); GROUPS],
             n: [Vec3x4::default(); GROUPS],
-            ng: [Vec3x4::default(); GROUPS],
-            front: [Vec3x4::default(); GROUPS],
-            back: [Vec3x4::default(); GROUPS],
             inv_pi: [Vec4::ZERO; GROUPS],
             albedo: [Vec3::ZERO; MAX_BLOCK_PATHS],
         };
@@ -190,11 +103,8 @@ impl FirstVertexLanes {
                 continue;
             };
             let (group, lane) = (k / 4, k % 4);
-            lanes.p[group].set_lane(lane, x.point.p);
+            lanes.points[group].set_lane(lane, &x.point);
             lanes.n[group].set_lane(lane, x.frame.n);
-            lanes.ng[group].set_lane(lane, x.point.ng);
-            lanes.front[group].set_lane(lane, x.point.front);
-            lanes.back[group].set_lane(lane, x.point.back);
             // The diffuse lobe reflects nothing towards a camera behind it.
             lanes.inv_pi[group][lane] = if x.wo.z > 0.0 { FRAC_1_PI } else { 0.0 };
             lanes.albedo[k] = x.diffuse.reflectance();
@@ -210,42 +120,31 @@ impl FirstVertexLanes {
     pub(super) fn towards(&self, y: &SecondVertex, side: (bool, bool)) -> Connections {
         // Seen from y the first vertex lies along −d: on the front of a normal n where n·d < 0.
         let (front_ng, front_ns) = (BVec4A::splat(side.0), BVec4A::splat(side.1));
-        let (y_p, y_ng, y_ns) = (
-            Vec3x4::splat(y.point.p),
-            Vec3x4::splat(y.point.ng),
-            Vec3x4::splat(y.ns),
-        );
-        let (y_front, y_back) = (Vec3x4::splat(y.point.front), Vec3x4::splat(y.point.back));
+        let (y_point, y_ns) = (SpawnPointx4::splat(&y.point), Vec3x4::splat(y.ns));
         let mut connections = Connections([ConnectionLanes::default(); GROUPS]);
         for (group, out) in connections.0.iter_mut().enumerate() {
-            let d = y_p.minus(&self.p[group]);
+            let x_point = &self.points[group];
+            let d = y_point.p.minus(&x_point.p);
             let distance_squared = d.dot(&d);
             let distance = distance_squared.sqrt();
             let cos_x = d.dot(&self.n[group]) / distance;
-            let (ng_dot, ns_dot) = (d.dot(&y_ng), d.dot(&y_ns));
+            let (ng_dot, ns_dot) = (d.dot(&y_point.ng), d.dot(&y_ns));
             let cos_y = ng_dot.abs() / distance;
             let pdf = cos_x * self.inv_pi[group] * cos_y / distance_squared;
             let same_side =
                 !(ng_dot.cmplt(Vec4::ZERO) ^ front_ng) & !(ns_dot.cmplt(Vec4::ZERO) ^ front_ns);
             let counts = same_side & pdf.cmpgt(Vec4::ZERO) & pdf.cmplt(Vec4::INFINITY);
 
-            // The ends moved off their surfaces as `offset_ray_origin` moves them, and the ray
-            // between them as `Ray::between` makes it.
-            let ng = &self.ng[group];
-            let leaves_back = d.dot(ng).cmplt(Vec4::ZERO);
-            let origin = Vec3x4::select(leaves_back, &self.back[group], &self.front[group]);
-            let end = Vec3x4::select(ng_dot.cmpgt(Vec4::ZERO), &y_back, &y_front);
-            let segment = end.minus(&origin);
-            let length = segment.dot(&segment).sqrt();
-            let forward = length.cmpgt(Vec4::ZERO)
-                & length.cmplt(Vec4::INFINITY)
-                & segment.dot(&d).cmpgt(Vec4::ZERO);
+            // The shadow ray as `SpawnPoint::spawn_to` makes it: from x's origin towards y to
+            // y's origin towards x (y's `ng · -d` is `-ng_dot`, exactly).
+            let origin = x_point.origins_towards(d.dot(&x_point.ng));
+            let end = y_point.origins_towards(-ng_dot);
+            let (rays, t_max) = Rayx4::between(&origin, &end, &d, &x_point.ng);
             *out = ConnectionLanes {
                 pdf_area: Vec4::select(counts, pdf, Vec4::ZERO),
                 counted: counts.bitmask(),
-                origin,
-                dir: Vec3x4::select(forward, &segment.divided_by(length), ng),
-                t_max: Vec4::select(forward, length, Vec4::ZERO),
+                rays,
+                t_max,
             };
         }
         connections
