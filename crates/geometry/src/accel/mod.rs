@@ -183,7 +183,8 @@ impl Accel {
         }
     }
 
-    /// Completes the hit of `ray` that traversal found.
+    /// Completes the hit that traversal found along the ray from `origin` in the unit direction
+    /// `dir`.
     fn surface_hit(&self, origin: Vec3, dir: Vec3, found: Found) -> WideHit {
         match found {
             Found::Triangle { packet, lane, hit } => {
@@ -251,11 +252,13 @@ struct WideHit {
 }
 
 impl WideHit {
+    /// `shape` and `prim` packed into [`WideHit::ids`].
     #[inline(always)]
     fn ids(shape: u32, prim: u32) -> u64 {
         u64::from(shape) | (u64::from(prim) << 32)
     }
 
+    /// The [`Hit`] this record holds.
     #[inline(always)]
     fn into_hit(self) -> Hit {
         Hit {
