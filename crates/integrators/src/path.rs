@@ -328,7 +328,7 @@ impl PathIntegrator {
         } else if surface.bsdf.is_delta() {
             Vec3::ZERO
         } else {
-            delta_lights(world, surface, wo, counters)
+            delta_lights(world, surface, point, wo, counters)
         }
     }
 
@@ -363,7 +363,7 @@ impl PathIntegrator {
                 }
             }
         } else if samples.light > 0 && !surface.bsdf.is_delta() {
-            radiance += delta_lights(world, surface, wo, counters);
+            radiance += delta_lights(world, surface, point, wo, counters);
         }
         for _ in 0..samples.bsdf {
             let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);

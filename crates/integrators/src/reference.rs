@@ -10,7 +10,7 @@ use crate::delta_lights::delta_lights;
 use crate::settings::DirectSamples;
 use crate::uniform_direction::sample_without_importance;
 use crate::{BsdfSlot, CameraRay, RayTally, World};
-use geometry::Ray;
+use geometry::SpawnPoint;
 use glam::Vec3;
 use sampling::Sampler;
 
@@ -82,13 +82,12 @@ pub fn radiance(
         if last && !(settings.skip_null_vertices && surface.bsdf.has_null_lobe()) {
             break;
         }
-        let p = surface.hit.p;
-        let ng = surface.hit.ng;
+        let point = SpawnPoint::new(surface.hit.p, surface.hit.ng);
         let wo = surface.frame.to_local(-ray.dir);
 
         let first_direct = settings.direct_samples.filter(|_| depth == 1);
         if !last && first_direct.is_none_or(|s| s.light > 0) {
-            radiance += throughput * delta_lights(world, &surface, wo, counters);
+            radiance += throughput * delta_lights(world, &surface, &point, wo, counters);
         }
 
         let Some(step) = sample_without_importance(surface.bsdf, wo, u_lobe, u_dir) else {
@@ -107,7 +106,7 @@ pub fn radiance(
         if throughput == Vec3::ZERO {
             break;
         }
-        ray = Ray::spawn(p, ng, surface.frame.to_world(wi));
+        ray = point.spawn(surface.frame.to_world(wi));
         t_max = f32::INFINITY;
         depth += u32::from(!passes_null);
     }
