@@ -20,6 +20,8 @@ pub struct MeshAreaLight {
     normals: Vec<Vec3>,
     area_distribution: CdfTable,
     total_area: f32,
+    /// 1 / `total_area`: the density per unit area of a uniformly sampled point.
+    pdf_area: f32,
     radiance: Vec3,
     /// A sphere around every triangle: centre and radius (world units).
     bounds: (Vec3, f32),
@@ -48,6 +50,7 @@ impl MeshAreaLight {
             normals,
             area_distribution,
             total_area,
+            pdf_area: 1.0 / total_area,
             radiance,
             bounds,
         })
@@ -73,7 +76,7 @@ impl MeshAreaLight {
     #[inline]
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         let (p_light, n_light) = self.sample_point(u);
-        area_sample_towards(p, p_light, n_light, 1.0 / self.total_area, self.radiance)
+        area_sample_towards(p, p_light, n_light, self.pdf_area, self.radiance)
     }
 
     /// A point uniform by area with `u` ∈ [0, 1)², and the unit normal there.
@@ -95,7 +98,7 @@ impl MeshAreaLight {
     /// (geometric normal `n_light`) of this mesh.
     #[inline]
     pub fn pdf_li(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
-        area_pdf_towards(p, p_light, n_light, 1.0 / self.total_area)
+        area_pdf_towards(p, p_light, n_light, self.pdf_area)
     }
 
     /// Light leaving the mesh: a point uniform by area (`u_point`) and a cosine-distributed
