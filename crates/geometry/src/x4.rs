@@ -2,7 +2,7 @@
 //! surface points with their offset ray origins, and the shadow rays between such points, each
 //! lane bit for bit what [`SpawnPoint`] and [`Ray::between`] give for it.
 
-use glam::{BVec4A, Vec3, Vec4};
+use glam::{BVec4A, Mat4, Vec3, Vec3A, Vec4};
 
 use crate::{Ray, SpawnPoint};
 
@@ -166,6 +166,24 @@ impl Rayx4 {
             dir: self.dir.lane(lane),
         }
     }
+
+    /// All four rays, lane by lane, as [`crate::Accel::occluded_wide`] takes them: origin and
+    /// unit direction as 16-byte vectors, and that lane of `t_max` (world units). Two 4 × 4
+    /// transposes, instead of gathering each lane's coordinates one by one.
+    #[inline]
+    pub fn lanes(&self, t_max: Vec4) -> [(Vec3A, Vec3A, f32); 4] {
+        let origins = Mat4::from_cols(self.origin.x, self.origin.y, self.origin.z, t_max);
+        let dirs = Mat4::from_cols(self.dir.x, self.dir.y, self.dir.z, Vec4::ZERO);
+        let (origins, dirs) = (origins.transpose(), dirs.transpose());
+        std::array::from_fn(|lane| {
+            let origin = origins.col(lane);
+            (
+                Vec3A::from_vec4(origin),
+                Vec3A::from_vec4(dirs.col(lane)),
+                origin.w,
+            )
+        })
+    }
 }
 
 #[cfg(test)]
@@ -208,11 +226,20 @@ mod tests {
             let origin = from.origins_towards(from.ng.dot(&to_target));
             let end = to.origins_towards(-to.ng.dot(&to_target));
             let (rays, t_max) = Rayx4::between(&origin, &end, &to_target, &from.ng);
+            let lanes = rays.lanes(t_max);
             for (lane, (a, b)) in group.iter().enumerate() {
                 let (expected, expected_t_max) = a.spawn_to(b.p, b.ng);
                 let what = format!("lane {lane}: {a:?} to {b:?}");
                 assert_eq!(rays.lane(lane), expected, "{what}");
                 assert_eq!(t_max.to_array()[lane], expected_t_max, "{what}");
+                let (wide_origin, wide_dir, wide_t_max) = lanes[lane];
+                assert_eq!(Vec3::from(wide_origin), expected.origin, "wide {what}");
+                assert_eq!(Vec3::from(wide_dir), expected.dir, "wide {what}");
+                assert_eq!(
+                    wide_t_max.to_bits(),
+                    expected_t_max.to_bits(),
+                    "wide {what}"
+                );
                 degenerate += usize::from(expected_t_max == 0.0);
             }
         }

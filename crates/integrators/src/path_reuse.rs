@@ -141,21 +141,30 @@ pub fn combine(
         let (Some(x_j), Some(y)) = (&path.first, &path.second) else {
             continue;
         };
-        let mut connections = firsts.towards(y, y.side_of(x_j.point.p));
-        let counted = connections.counted();
-        // Path j's own second vertex is what its ray found: visible.
-        for k in lanes_of(counted & !(1 << j)) {
-            let (ray, t_max) = connections.ray(k);
-            if !world.ray_unoccluded(&ray, t_max, tally) {
-                connections.occlude(k);
+        let side = y.side_of(x_j.point.p);
+        // The densities of the first vertices that see y, path by path, and which those are.
+        let mut pdf_area = [0.0; MAX_BLOCK_PATHS];
+        let mut seen = 0_u32;
+        for group in 0..firsts.groups() {
+            let connections = firsts.towards(group, y, side);
+            let rays = connections.rays.lanes(connections.t_max);
+            let pdf = connections.pdf_area.to_array();
+            for lane in lanes_of(connections.counted) {
+                let k = 4 * group + lane;
+                let (origin, dir, t_max) = rays[lane];
+                // Path j's own second vertex is what its ray found: visible.
+                if k == j || world.wide_ray_unoccluded(origin, dir, t_max, tally) {
+                    pdf_area[k] = pdf[lane];
+                    seen |= 1 << k;
+                }
             }
         }
-        let total_pdf_area = connections.total_pdf_area();
+        let total_pdf_area = pdf_area.iter().fold(0.0, |total, pdf| total + pdf);
         if total_pdf_area > 0.0 {
             let share = y.reflected / total_pdf_area;
-            for k in lanes_of(counted) {
+            for k in lanes_of(seen) {
                 // f G = albedo · pdf_area for a Lambertian first vertex.
-                radiance[k] += firsts.albedo[k] * connections.pdf_area(k) * share;
+                radiance[k] += firsts.albedo[k] * pdf_area[k] * share;
             }
         }
     }
@@ -222,7 +231,7 @@ mod tests {
     }
 
     /// f · cos θx · cos θy / d² and the area density, from first vertex `x` (normal +z) to `y`
-    /// (normal `n`), written out independently of [`FirstVertex::towards`].
+    /// (normal `n`), written out independently of [`FirstVertexLanes::towards`].
     fn by_hand(x: Vec3, y: Vec3, n: Vec3) -> (Vec3, f32) {
         let d = y - x;
         let (cos_x, cos_y) = (d.z / d.length(), n.dot(-d).abs() / d.length());
@@ -331,13 +340,19 @@ mod tests {
                 ns: n,
                 reflected: REFLECTED,
             };
-            let connections = lanes.towards(&y, y.side_of(firsts[0].0));
+            let side = y.side_of(firsts[0].0);
+            let groups = (0..lanes.groups())
+                .map(|group| {
+                    let connections = lanes.towards(group, &y, side);
+                    connections.rays.lanes(connections.t_max)
+                })
+                .collect::<Vec<_>>();
             for (k, &(p, ng)) in firsts.iter().enumerate() {
-                let (ray, t_max) = connections.ray(k);
+                let (origin, dir, t_max) = groups[k / 4][k % 4];
                 let (expected, expected_t_max) = Ray::spawn_to(p, ng, q, n);
                 let what = format!("from {p} (normal {ng}) to {q} (normal {n})");
-                assert_eq!(ray.origin, expected.origin, "origin {what}");
-                assert_eq!(ray.dir, expected.dir, "direction {what}");
+                assert_eq!(Vec3::from(origin), expected.origin, "origin {what}");
+                assert_eq!(Vec3::from(dir), expected.dir, "direction {what}");
                 assert_eq!(t_max, expected_t_max, "t_max {what}");
                 rays += usize::from(t_max > 0.0);
             }

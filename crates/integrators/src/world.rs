@@ -3,7 +3,7 @@
 
 use crate::{CameraRay, RayTally};
 use geometry::{Accel, Hit, Ray, SpawnPoint};
-use glam::{Affine2, Vec3};
+use glam::{Affine2, Vec3, Vec3A};
 use lights::{Light, LightSample};
 use materials::{BitmapTexture, Bsdf};
 use sampling::Frame;
@@ -420,6 +420,24 @@ impl World {
     pub fn ray_unoccluded(&self, ray: &Ray, t_max: f32, tally: &mut impl RayTally) -> bool {
         tally.shadow_ray(ray, t_max);
         !self.accel.occluded(ray, t_max)
+    }
+
+    /// [`Self::ray_unoccluded`] for the ray from `origin` in the unit direction `dir`, given as
+    /// 16-byte vectors ([`geometry::Rayx4::lanes`]).
+    #[inline(always)]
+    pub fn wide_ray_unoccluded(
+        &self,
+        origin: Vec3A,
+        dir: Vec3A,
+        t_max: f32,
+        tally: &mut impl RayTally,
+    ) -> bool {
+        let ray = Ray {
+            origin: origin.into(),
+            dir: dir.into(),
+        };
+        tally.shadow_ray(&ray, t_max);
+        !self.accel.occluded_wide(origin, dir, t_max)
     }
 
     /// True when nothing blocks the segment from the surface point `p` (geometric normal `ng`)

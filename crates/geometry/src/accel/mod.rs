@@ -108,9 +108,11 @@ impl Accel {
         self.occluded_wide(ray.origin.into(), ray.dir.into(), t_max)
     }
 
-    /// [`Accel::occluded`] for the ray from `origin` in the unit direction `dir`.
+    /// [`Accel::occluded`] for the ray from `origin` in the unit direction `dir`, both given
+    /// as 16-byte vectors (as [`crate::Rayx4::lanes`] makes them), so that a caller holding
+    /// rays in that form hands them over in registers.
     #[inline(never)]
-    fn occluded_wide(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> bool {
+    pub fn occluded_wide(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> bool {
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
             return false;
         }

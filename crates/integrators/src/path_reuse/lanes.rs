@@ -3,7 +3,7 @@
 //! vertex, as [`super::combine`] needs them.
 
 use super::{MAX_BLOCK_PATHS, ReusablePath, SecondVertex};
-use geometry::{Ray, Rayx4, SpawnPointx4, Vec3x4};
+use geometry::{Rayx4, SpawnPointx4, Vec3x4};
 use glam::{BVec4A, Vec3, Vec4};
 use std::f32::consts::FRAC_1_PI;
 
@@ -23,69 +23,22 @@ pub(super) struct FirstVertexLanes {
     inv_pi: [Vec4; GROUPS],
     /// The RGB albedos (zero in lanes without a first vertex).
     pub(super) albedo: [Vec3; MAX_BLOCK_PATHS],
+    /// How many groups of four lanes hold paths.
+    groups: usize,
 }
 
-/// The connections of four of a block's first vertices to one second vertex y, lane by lane.
-#[derive(Clone, Copy, Debug, Default)]
-struct ConnectionLanes {
+/// The connections of one group of four of a block's first vertices to one second vertex y,
+/// lane by lane.
+pub(super) struct ConnectionLanes {
     /// The density per unit area with which each lane's cosine sampling reaches y if nothing is
     /// in between; zero where the lane does not count (see [`FirstVertexLanes::towards`]).
-    pdf_area: Vec4,
+    pub(super) pdf_area: Vec4,
     /// The lanes whose density is not zero, as a bit mask.
-    counted: u32,
-    /// The shadow ray from each lane's first vertex to y, as [`Ray::between`] makes it from the
+    pub(super) counted: u32,
+    /// The shadow ray from each lane's first vertex to y, as [`geometry::Ray::between`] makes it from the
     /// two ends moved off their surfaces, and its `t_max`.
-    rays: Rayx4,
-    t_max: Vec4,
-}
-
-/// The connections of all of a block's first vertices to one second vertex y.
-pub(super) struct Connections([ConnectionLanes; GROUPS]);
-
-impl Connections {
-    /// The lanes whose density is not zero, as a bit mask.
-    #[inline]
-    pub(super) fn counted(&self) -> u32 {
-        let mut mask = 0;
-        for (group, lanes) in self.0.iter().enumerate() {
-            mask |= lanes.counted << (4 * group);
-        }
-        mask
-    }
-
-    /// The density per unit area of `lane` (see [`ConnectionLanes::pdf_area`]).
-    #[inline]
-    pub(super) fn pdf_area(&self, lane: usize) -> f32 {
-        self.0[lane / 4].pdf_area.to_array()[lane % 4]
-    }
-
-    /// The shadow ray of `lane` and its `t_max`.
-    #[inline]
-    pub(super) fn ray(&self, lane: usize) -> (Ray, f32) {
-        let lanes = &self.0[lane / 4];
-        (lanes.rays.lane(lane % 4), lanes.t_max.to_array()[lane % 4])
-    }
-
-    /// Counts `lane` out: its first vertex does not see y.
-    #[inline]
-    pub(super) fn occlude(&mut self, lane: usize) {
-        let pdf_area = &mut self.0[lane / 4].pdf_area;
-        let mut lanes = pdf_area.to_array();
-        lanes[lane % 4] = 0.0;
-        *pdf_area = Vec4::from_array(lanes);
-    }
-
-    /// The sum of the densities, lane by lane in order.
-    #[inline]
-    pub(super) fn total_pdf_area(&self) -> f32 {
-        let mut total = 0.0;
-        for lanes in &self.0 {
-            for pdf in lanes.pdf_area.to_array() {
-                total += pdf;
-            }
-        }
-        total
-    }
+    pub(super) rays: Rayx4,
+    pub(super) t_max: Vec4,
 }
 
 impl FirstVertexLanes {
@@ -97,6 +50,7 @@ impl FirstVertexLanes {
             n: [Vec3x4::default(); GROUPS],
             inv_pi: [Vec4::ZERO; GROUPS],
             albedo: [Vec3::ZERO; MAX_BLOCK_PATHS],
+            groups: paths.len().div_ceil(4),
         };
         for (k, first) in paths.iter().enumerate() {
             let Some(x) = &first.first else {
@@ -112,42 +66,49 @@ impl FirstVertexLanes {
         lanes
     }
 
-    /// For every lane, the density per unit area with which its cosine sampling reaches `y` if
-    /// nothing is in between, where its first vertex lies on the sides of `y` given by `side`
-    /// ([`SecondVertex::side_of`]), zero elsewhere and where the density is not positive and
-    /// finite; and the shadow ray to `y`.
+    /// How many groups of four lanes hold paths (the lanes of path k are in group k / 4).
     #[inline]
-    pub(super) fn towards(&self, y: &SecondVertex, side: (bool, bool)) -> Connections {
+    pub(super) fn groups(&self) -> usize {
+        self.groups
+    }
+
+    /// For every lane of `group`, the density per unit area with which its cosine sampling
+    /// reaches `y` if nothing is in between, where its first vertex lies on the sides of `y`
+    /// given by `side` ([`SecondVertex::side_of`]), zero elsewhere and where the density is not
+    /// positive and finite; and the shadow ray to `y`.
+    #[inline]
+    pub(super) fn towards(
+        &self,
+        group: usize,
+        y: &SecondVertex,
+        side: (bool, bool),
+    ) -> ConnectionLanes {
         // Seen from y the first vertex lies along −d: on the front of a normal n where n·d < 0.
         let (front_ng, front_ns) = (BVec4A::splat(side.0), BVec4A::splat(side.1));
         let (y_point, y_ns) = (SpawnPointx4::splat(&y.point), Vec3x4::splat(y.ns));
-        let mut connections = Connections([ConnectionLanes::default(); GROUPS]);
-        for (group, out) in connections.0.iter_mut().enumerate() {
-            let x_point = &self.points[group];
-            let d = y_point.p.minus(&x_point.p);
-            let distance_squared = d.dot(&d);
-            let distance = distance_squared.sqrt();
-            let cos_x = d.dot(&self.n[group]) / distance;
-            let (ng_dot, ns_dot) = (d.dot(&y_point.ng), d.dot(&y_ns));
-            let cos_y = ng_dot.abs() / distance;
-            let pdf = cos_x * self.inv_pi[group] * cos_y / distance_squared;
-            let same_side =
-                !(ng_dot.cmplt(Vec4::ZERO) ^ front_ng) & !(ns_dot.cmplt(Vec4::ZERO) ^ front_ns);
-            let counts = same_side & pdf.cmpgt(Vec4::ZERO) & pdf.cmplt(Vec4::INFINITY);
+        let x_point = &self.points[group];
+        let d = y_point.p.minus(&x_point.p);
+        let distance_squared = d.dot(&d);
+        let distance = distance_squared.sqrt();
+        let cos_x = d.dot(&self.n[group]) / distance;
+        let (ng_dot, ns_dot) = (d.dot(&y_point.ng), d.dot(&y_ns));
+        let cos_y = ng_dot.abs() / distance;
+        let pdf = cos_x * self.inv_pi[group] * cos_y / distance_squared;
+        let same_side =
+            !(ng_dot.cmplt(Vec4::ZERO) ^ front_ng) & !(ns_dot.cmplt(Vec4::ZERO) ^ front_ns);
+        let counts = same_side & pdf.cmpgt(Vec4::ZERO) & pdf.cmplt(Vec4::INFINITY);
 
-            // The shadow ray as `SpawnPoint::spawn_to` makes it: from x's origin towards y to
-            // y's origin towards x (y's `ng · -d` is `-ng_dot`, exactly).
-            let origin = x_point.origins_towards(d.dot(&x_point.ng));
-            let end = y_point.origins_towards(-ng_dot);
-            let (rays, t_max) = Rayx4::between(&origin, &end, &d, &x_point.ng);
-            *out = ConnectionLanes {
-                pdf_area: Vec4::select(counts, pdf, Vec4::ZERO),
-                counted: counts.bitmask(),
-                rays,
-                t_max,
-            };
+        // The shadow ray as `SpawnPoint::spawn_to` makes it: from x's origin towards y to y's
+        // origin towards x (y's `ng · -d` is `-ng_dot`, exactly).
+        let origin = x_point.origins_towards(d.dot(&x_point.ng));
+        let end = y_point.origins_towards(-ng_dot);
+        let (rays, t_max) = Rayx4::between(&origin, &end, &d, &x_point.ng);
+        ConnectionLanes {
+            pdf_area: Vec4::select(counts, pdf, Vec4::ZERO),
+            counted: counts.bitmask(),
+            rays,
+            t_max,
         }
-        connections
     }
 }
 
