@@ -536,6 +536,7 @@ impl PathIntegrator {
 
     /// The MIS weight of one of `n_f` samples with density `pdf_f` against `n_g` samples of the
     /// other strategy with density `pdf_g`.
+    #[inline]
     fn heuristic(&self, n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32) -> f32 {
         match self.settings.mis {
             Mis::Off => 1.0,
