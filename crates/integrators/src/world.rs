@@ -414,16 +414,9 @@ impl World {
         }
     }
 
-    /// True when nothing blocks `ray` for `0 < t < t_max` (a shadow ray from [`Ray::between`]),
-    /// told to `tally` as one shadow ray.
-    #[inline]
-    pub fn ray_unoccluded(&self, ray: &Ray, t_max: f32, tally: &mut impl RayTally) -> bool {
-        tally.shadow_ray(ray, t_max);
-        !self.accel.occluded(ray, t_max)
-    }
-
-    /// [`Self::ray_unoccluded`] for the ray from `origin` in the unit direction `dir`, given as
-    /// 16-byte vectors ([`geometry::Rayx4::lanes`]).
+    /// True when nothing blocks the ray from `origin` in the unit direction `dir` for
+    /// `0 < t < t_max` (a shadow ray from [`Ray::between`], given as 16-byte vectors as
+    /// [`geometry::Rayx4::lanes`] makes them), told to `tally` as one shadow ray.
     #[inline(always)]
     pub fn wide_ray_unoccluded(
         &self,

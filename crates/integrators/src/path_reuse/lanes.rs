@@ -35,8 +35,8 @@ pub(super) struct ConnectionLanes {
     pub(super) pdf_area: Vec4,
     /// The lanes whose density is not zero, as a bit mask.
     pub(super) counted: u32,
-    /// The shadow ray from each lane's first vertex to y, as [`geometry::Ray::between`] makes it from the
-    /// two ends moved off their surfaces, and its `t_max`.
+    /// The shadow ray from each lane's first vertex to y, as [`geometry::Ray::between`] makes
+    /// it from the two ends moved off their surfaces, and its `t_max`.
     pub(super) rays: Rayx4,
     pub(super) t_max: Vec4,
 }
