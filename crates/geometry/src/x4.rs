@@ -1,10 +1,10 @@
 //! Ray spawning four lanes at a time: 3-vectors coordinate by coordinate (structure of arrays),
 //! surface points with their offset ray origins, and the shadow rays between such points, each
-//! lane bit for bit what [`SpawnPoint`] and [`Ray::between`] give for it.
+//! lane bit for bit what [`SpawnPoint`] and [`crate::Ray::between`] give for it.
 
 use glam::{BVec4A, Mat4, Vec3, Vec3A, Vec4};
 
-use crate::{Ray, SpawnPoint};
+use crate::SpawnPoint;
 
 /// Four 3-vectors, coordinate by coordinate (structure of arrays).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -26,17 +26,6 @@ impl Vec3x4 {
             y: Vec4::splat(v.y),
             z: Vec4::splat(v.z),
         }
-    }
-
-    /// The vector in `lane` (0–3).
-    #[inline]
-    pub fn lane(&self, lane: usize) -> Vec3 {
-        // Through arrays: indexing a vector by a variable lane compiles to a jump table.
-        Vec3::new(
-            self.x.to_array()[lane],
-            self.y.to_array()[lane],
-            self.z.to_array()[lane],
-        )
     }
 
     /// Sets the vector in `lane` (0–3) to `v`.
@@ -133,8 +122,8 @@ pub struct Rayx4 {
 }
 
 impl Rayx4 {
-    /// [`Ray::between`] lane by lane: the shadow rays from `origin` to `end` and their `t_max`,
-    /// where `to_target` is each lane's direction between the unmoved points; direction
+    /// [`crate::Ray::between`] lane by lane: the shadow rays from `origin` to `end` and their
+    /// `t_max`, where `to_target` is each lane's direction between the unmoved points; direction
     /// `fallback` and `t_max = 0` where the moved points coincide or pass each other.
     #[inline]
     pub fn between(
@@ -156,15 +145,6 @@ impl Rayx4 {
             },
             Vec4::select(forward, distance, Vec4::ZERO),
         )
-    }
-
-    /// The ray in `lane` (0–3).
-    #[inline]
-    pub fn lane(&self, lane: usize) -> Ray {
-        Ray {
-            origin: self.origin.lane(lane),
-            dir: self.dir.lane(lane),
-        }
     }
 
     /// All four rays, lane by lane, as [`crate::Accel::occluded_wide`] takes them: origin and
@@ -230,7 +210,6 @@ mod tests {
             for (lane, (a, b)) in group.iter().enumerate() {
                 let (expected, expected_t_max) = a.spawn_to(b.p, b.ng);
                 let what = format!("lane {lane}: {a:?} to {b:?}");
-                assert_eq!(rays.lane(lane), expected, "{what}");
                 assert_eq!(t_max.to_array()[lane], expected_t_max, "{what}");
                 let (wide_origin, wide_dir, wide_t_max) = lanes[lane];
                 assert_eq!(Vec3::from(wide_origin), expected.origin, "wide {what}");

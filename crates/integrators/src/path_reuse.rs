@@ -147,6 +147,9 @@ pub fn combine(
         let mut seen = 0_u32;
         for group in 0..firsts.groups() {
             let connections = firsts.towards(group, y, side);
+            if connections.counted == 0 {
+                continue;
+            }
             let rays = connections.rays.lanes(connections.t_max);
             let pdf = connections.pdf_area.to_array();
             for lane in lanes_of(connections.counted) {
