@@ -6,6 +6,8 @@ use proptest::prelude::*;
 use sampling::chi2::{Chi2Config, chi2_discrete};
 use sampling::distribution::{AliasTable, AliasTableError};
 
+mod common;
+
 #[test]
 fn refuses_weights_it_cannot_sample() {
     assert_eq!(AliasTable::new(&[]).unwrap_err(), AliasTableError::Empty);
@@ -87,7 +89,7 @@ fn zero_weights_are_never_returned_even_at_the_ends_of_u() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(32))]
+    #![proptest_config(common::fixed_seed(32))]
 
     #[test]
     fn the_share_of_u_mapped_to_each_index_is_its_pmf(

@@ -4,6 +4,8 @@ use glam::Vec3;
 use proptest::prelude::*;
 use sampling::Frame;
 
+mod common;
+
 fn check_frame(n: Vec3) {
     let f = Frame::from_normal(n);
     let tolerance = 1e-5;
@@ -67,7 +69,7 @@ fn unit_vector() -> impl Strategy<Value = Vec3> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(common::fixed_seed(512))]
 
     #[test]
     fn any_normal_gives_a_right_handed_orthonormal_frame(n in unit_vector()) {

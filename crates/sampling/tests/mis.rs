@@ -5,6 +5,8 @@ use proptest::prelude::*;
 use sampling::Rng;
 use sampling::mis::{balance_heuristic, power_heuristic};
 
+mod common;
+
 type Heuristic = fn(f32, f32, f32, f32) -> f32;
 const HEURISTICS: [(&str, Heuristic); 2] =
     [("balance", balance_heuristic), ("power", power_heuristic)];
@@ -56,7 +58,7 @@ fn pdf() -> impl Strategy<Value = f32> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(common::fixed_seed(2000))]
 
     #[test]
     fn weights_are_finite_and_sum_to_one(
