@@ -5,6 +5,7 @@ use crate::SurfaceHit;
 use crate::settings::LightSelectionMode;
 use glam::{Vec2, Vec3};
 use lights::{Light, LightSample, LightSelector};
+use materials::Bsdf;
 use sampling::reservoir::Reservoir;
 use sampling::{Rng, rng::wang_hash};
 
@@ -74,7 +75,11 @@ fn evaluate(
 ) -> Option<ChosenLight> {
     let sample = light.sample_li(surface.hit.p, u_point)?;
     let wi = surface.frame.to_local(sample.wi);
-    let (f, pdf_bsdf_solid_angle) = surface.bsdf.eval_with_pdf(wo, wi);
+    // The common case inlined, as the walk inlines a diffuse BSDF's sampling.
+    let (f, pdf_bsdf_solid_angle) = match surface.bsdf {
+        Bsdf::Diffuse(diffuse) => diffuse.eval_with_pdf(wo, wi),
+        bsdf => bsdf.eval_with_pdf(wo, wi),
+    };
     let f_cos = f * wi.z.abs();
     if f_cos == Vec3::ZERO || sample.radiance == Vec3::ZERO {
         return None;
