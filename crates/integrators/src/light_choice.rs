@@ -73,9 +73,13 @@ fn evaluate(
     wo: Vec3,
     u_point: Vec2,
 ) -> Option<ChosenLight> {
-    let sample = light.sample_li(surface.hit.p, u_point)?;
+    // The common cases inlined, as the walk inlines a diffuse BSDF's sampling: an area light on
+    // a mesh, seen from a diffuse surface.
+    let sample = match light {
+        Light::Mesh(mesh) => mesh.sample_li(surface.hit.p, u_point),
+        light => light.sample_li(surface.hit.p, u_point),
+    }?;
     let wi = surface.frame.to_local(sample.wi);
-    // The common case inlined, as the walk inlines a diffuse BSDF's sampling.
     let (f, pdf_bsdf_solid_angle) = match surface.bsdf {
         Bsdf::Diffuse(diffuse) => diffuse.eval_with_pdf(wo, wi),
         bsdf => bsdf.eval_with_pdf(wo, wi),
