@@ -28,13 +28,13 @@
 
 use crate::{RayTally, SurfaceHit, World};
 use geometry::SpawnPoint;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use materials::{Bsdf, Diffuse};
 use sampling::Frame;
 
 mod lanes;
 
-use lanes::{FirstVertexLanes, lanes_of};
+use lanes::{FirstVertexLanes, GROUPS, RadianceLanes, lanes_of};
 
 /// The most paths [`combine`] takes at once.
 pub const MAX_BLOCK_PATHS: usize = 16;
@@ -132,45 +132,43 @@ pub fn combine(
     radiance: &mut [Vec3],
 ) {
     assert!(paths.len() <= MAX_BLOCK_PATHS, "too many paths to combine");
-    let radiance = &mut radiance[..paths.len()];
-    for (out, path) in radiance.iter_mut().zip(paths) {
-        *out = path.own;
-    }
+    let mut sums = RadianceLanes::of(paths.iter().map(|path| path.own));
     let firsts = FirstVertexLanes::of(paths);
     for (j, path) in paths.iter().enumerate() {
         let (Some(x_j), Some(y)) = (&path.first, &path.second) else {
             continue;
         };
         let side = y.side_of(x_j.point.p);
-        // The densities of the first vertices that see y, path by path, and which those are.
-        let mut pdf_area = [0.0; MAX_BLOCK_PATHS];
-        let mut seen = 0_u32;
-        for group in 0..firsts.groups() {
+        // The densities of the first vertices that see y, group by group (zero elsewhere).
+        let mut pdf_area = [Vec4::ZERO; GROUPS];
+        for (group, seen_pdf) in pdf_area.iter_mut().enumerate().take(firsts.groups()) {
             let connections = firsts.towards(group, y, side);
             if connections.counted == 0 {
                 continue;
             }
             let rays = connections.rays.lanes(connections.t_max);
-            let pdf = connections.pdf_area.to_array();
+            let mut pdf = connections.pdf_area.to_array();
             for lane in lanes_of(connections.counted) {
-                let k = 4 * group + lane;
                 let (origin, dir, t_max) = rays[lane];
                 // Path j's own second vertex is what its ray found: visible.
-                if k == j || world.wide_ray_unoccluded(origin, dir, t_max, tally) {
-                    pdf_area[k] = pdf[lane];
-                    seen |= 1 << k;
+                if 4 * group + lane != j && !world.wide_ray_unoccluded(origin, dir, t_max, tally) {
+                    pdf[lane] = 0.0;
                 }
             }
+            *seen_pdf = Vec4::from_array(pdf);
         }
-        let total_pdf_area = pdf_area.iter().fold(0.0, |total, pdf| total + pdf);
+        let total_pdf_area = pdf_area
+            .iter()
+            .flat_map(|group| group.to_array())
+            .fold(0.0, |total, pdf| total + pdf);
         if total_pdf_area > 0.0 {
             let share = y.reflected / total_pdf_area;
-            for k in lanes_of(seen) {
-                // f G = albedo · pdf_area for a Lambertian first vertex.
-                radiance[k] += firsts.albedo[k] * pdf_area[k] * share;
+            for (group, &pdf) in pdf_area.iter().enumerate().take(firsts.groups()) {
+                sums.add_shares(&firsts, group, pdf, share);
             }
         }
     }
+    sums.write_to(&mut radiance[..paths.len()]);
 }
 
 #[cfg(test)]

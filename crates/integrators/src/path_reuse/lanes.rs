@@ -8,7 +8,7 @@ use glam::{BVec4A, Vec3, Vec4};
 use std::f32::consts::FRAC_1_PI;
 
 /// Groups of four lanes in a block of [`MAX_BLOCK_PATHS`] paths.
-const GROUPS: usize = MAX_BLOCK_PATHS / 4;
+pub(super) const GROUPS: usize = MAX_BLOCK_PATHS / 4;
 
 /// The first vertices of a block laid out lane by lane (structure of arrays), so that the
 /// connections from all of them towards one second vertex are computed four at a time. A lane
@@ -22,7 +22,7 @@ pub(super) struct FirstVertexLanes {
     /// 1/π where the lane's cosine-sampling density counts, else 0 (sr⁻¹).
     inv_pi: [Vec4; GROUPS],
     /// The RGB albedos (zero in lanes without a first vertex).
-    pub(super) albedo: [Vec3; MAX_BLOCK_PATHS],
+    albedo: [Vec3x4; GROUPS],
     /// How many groups of four lanes hold paths.
     groups: usize,
 }
@@ -49,7 +49,7 @@ impl FirstVertexLanes {
             points: [SpawnPointx4::default(); GROUPS],
             n: [Vec3x4::default(); GROUPS],
             inv_pi: [Vec4::ZERO; GROUPS],
-            albedo: [Vec3::ZERO; MAX_BLOCK_PATHS],
+            albedo: [Vec3x4::default(); GROUPS],
             groups: paths.len().div_ceil(4),
         };
         for (k, first) in paths.iter().enumerate() {
@@ -61,7 +61,7 @@ impl FirstVertexLanes {
             lanes.n[group].set_lane(lane, x.frame.n);
             // The diffuse lobe reflects nothing towards a camera behind it.
             lanes.inv_pi[group][lane] = if x.wo.z > 0.0 { FRAC_1_PI } else { 0.0 };
-            lanes.albedo[k] = x.diffuse.reflectance();
+            lanes.albedo[group].set_lane(lane, x.diffuse.reflectance());
         }
         lanes
     }
@@ -108,6 +108,52 @@ impl FirstVertexLanes {
             counted: counts.bitmask(),
             rays,
             t_max,
+        }
+    }
+}
+
+/// A block's radiance estimates (W m⁻² sr⁻¹, RGB) lane by lane, path k in lane k, while
+/// [`super::combine`] adds the shared second vertices to them.
+pub(super) struct RadianceLanes([Vec3x4; GROUPS]);
+
+impl RadianceLanes {
+    /// The estimates `own`, path k in lane k.
+    #[inline]
+    pub(super) fn of(own: impl Iterator<Item = Vec3>) -> Self {
+        let mut lanes = [Vec3x4::default(); GROUPS];
+        for (k, radiance) in own.enumerate() {
+            lanes[k / 4].set_lane(k % 4, radiance);
+        }
+        Self(lanes)
+    }
+
+    /// Adds to each lane of `group` whose `pdf_area` is positive (a first vertex that sees the
+    /// second vertex) its share of the radiance `share` (the second vertex's reflected radiance
+    /// over the sum of the densities): albedo · pdf_area · share, f G / Σ p_k · L for a
+    /// Lambertian first vertex, in each lane as `albedo * pdf_area * share` computes it.
+    #[inline]
+    pub(super) fn add_shares(
+        &mut self,
+        firsts: &FirstVertexLanes,
+        group: usize,
+        pdf_area: Vec4,
+        share: Vec3,
+    ) {
+        let seen = pdf_area.cmpgt(Vec4::ZERO);
+        let (sums, albedo) = (&mut self.0[group], &firsts.albedo[group]);
+        sums.x = Vec4::select(seen, sums.x + albedo.x * pdf_area * share.x, sums.x);
+        sums.y = Vec4::select(seen, sums.y + albedo.y * pdf_area * share.y, sums.y);
+        sums.z = Vec4::select(seen, sums.z + albedo.z * pdf_area * share.z, sums.z);
+    }
+
+    /// Writes the estimates to `radiance`, path k's to `radiance[k]`.
+    #[inline]
+    pub(super) fn write_to(&self, radiance: &mut [Vec3]) {
+        for (group, out) in self.0.iter().zip(radiance.chunks_mut(4)) {
+            let (x, y, z) = (group.x.to_array(), group.y.to_array(), group.z.to_array());
+            for (lane, value) in out.iter_mut().enumerate() {
+                *value = Vec3::new(x[lane], y[lane], z[lane]);
+            }
         }
     }
 }
