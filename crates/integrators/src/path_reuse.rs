@@ -29,8 +29,7 @@
 use crate::{RayTally, SurfaceHit, World};
 use geometry::SpawnPoint;
 use glam::{Vec3, Vec4};
-use materials::{Bsdf, Diffuse};
-use sampling::Frame;
+use materials::Bsdf;
 
 mod lanes;
 
@@ -46,12 +45,12 @@ pub struct FirstVertex {
     /// Position, geometric normal, and where its shadow rays start (moved off the surface to
     /// either side once per vertex rather than once per connection).
     point: SpawnPoint,
-    /// The shading frame its BSDF sees.
-    frame: Frame,
-    /// Direction to the camera, in `frame`.
-    wo: Vec3,
-    /// Its BSDF.
-    diffuse: Diffuse,
+    /// Unit normal of the shading frame its BSDF sees (the diffuse lobe's +z).
+    n: Vec3,
+    /// Whether the camera is above the lobe (`wo.z > 0`): else it reflects nothing that way.
+    faces_camera: bool,
+    /// Its reflectance (RGB, not zero).
+    albedo: Vec3,
 }
 
 impl FirstVertex {
@@ -62,9 +61,9 @@ impl FirstVertex {
         match surface.bsdf {
             Bsdf::Diffuse(diffuse) if diffuse.reflectance() != Vec3::ZERO => Some(Self {
                 point: *point,
-                frame: surface.frame,
-                wo,
-                diffuse: *diffuse,
+                n: surface.frame.n,
+                faces_camera: wo.z > 0.0,
+                albedo: diffuse.reflectance(),
             }),
             _ => None,
         }
@@ -177,6 +176,7 @@ mod tests {
     use crate::RayCounters;
     use geometry::{Accel, Ray, Shape, Sphere};
     use glam::Mat3;
+    use materials::Diffuse;
     use std::f32::consts::FRAC_1_PI;
 
     const ALBEDO: Vec3 = Vec3::new(0.8, 0.5, 0.2);
@@ -219,9 +219,9 @@ mod tests {
             own: Vec3::splat(own),
             first: Some(FirstVertex {
                 point: SpawnPoint::new(x.0, x.1),
-                frame: Frame::from_normal(x.1),
-                wo: Vec3::Z,
-                diffuse: Diffuse::new(ALBEDO),
+                n: x.1,
+                faces_camera: true,
+                albedo: ALBEDO,
             }),
             second: second.map(|(p, n)| SecondVertex {
                 point: SpawnPoint::new(p, n),

@@ -58,10 +58,10 @@ impl FirstVertexLanes {
             };
             let (group, lane) = (k / 4, k % 4);
             lanes.points[group].set_lane(lane, &x.point);
-            lanes.n[group].set_lane(lane, x.frame.n);
+            lanes.n[group].set_lane(lane, x.n);
             // The diffuse lobe reflects nothing towards a camera behind it.
-            lanes.inv_pi[group][lane] = if x.wo.z > 0.0 { FRAC_1_PI } else { 0.0 };
-            lanes.albedo[group].set_lane(lane, x.diffuse.reflectance());
+            lanes.inv_pi[group][lane] = if x.faces_camera { FRAC_1_PI } else { 0.0 };
+            lanes.albedo[group].set_lane(lane, x.albedo);
         }
         lanes
     }
