@@ -369,7 +369,7 @@ impl World {
     fn surface<'s>(&'s self, hit: Hit, dir: Vec3, slot: &'s mut BsdfSlot) -> SurfaceHit<'s> {
         let shape = hit.shape as usize;
         let material = self.shape_material[shape];
-        let frame = if self.anisotropic.is_empty() || !self.anisotropic[material as usize] {
+        let mut frame = if self.anisotropic.is_empty() || !self.anisotropic[material as usize] {
             Frame::from_normal(hit.ns)
         } else {
             Frame::from_normal_and_tangent(hit.ns, self.accel.dp_du(&hit))
@@ -379,9 +379,12 @@ impl World {
         } else {
             self.textured_facing(material, &hit, &frame, dir, slot)
         };
+        if mirrored {
+            frame = frame.mirrored();
+        }
         SurfaceHit {
             hit,
-            frame: if mirrored { frame.mirrored() } else { frame },
+            frame,
             bsdf,
             light: self.shape_light[shape],
         }
