@@ -30,8 +30,9 @@ pub fn offset_ray_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
 
 /// [`offset_ray_origin`] to both sides at once: `p` moved to the side of the unit geometric
 /// normal `ng` and to the side of `-ng`. Each coordinate moves `trunc(INT_SCALE · ng)` units in
-/// the last place away from zero on the front (towards zero where that is negative) and the
-/// opposite on the back, or `±FLOAT_SCALE · ng` where it is below `ORIGIN` in magnitude.
+/// the last place on the front (away from zero for a positive count, towards it for a negative
+/// one) and the opposite on the back, or `±FLOAT_SCALE · ng` where it is below `ORIGIN` in
+/// magnitude.
 #[inline]
 pub(crate) fn offset_both_sides(p: Vec3, ng: Vec3) -> (Vec3, Vec3) {
     let (p, ng) = (Vec3A::from(p), Vec3A::from(ng));

@@ -149,7 +149,8 @@ pub fn combine(
             let mut pdf = connections.pdf_area.to_array();
             for lane in lanes_of(connections.counted) {
                 let (origin, dir, t_max) = rays[lane];
-                // Path j's own second vertex is what its ray found: visible.
+                // Path j's own second vertex is what its ray found, visible; the others are
+                // seen where their shadow ray is not blocked.
                 if 4 * group + lane != j && !world.wide_ray_unoccluded(origin, dir, t_max, tally) {
                     pdf[lane] = 0.0;
                 }
