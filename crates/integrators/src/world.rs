@@ -448,8 +448,7 @@ impl World {
         tally: &mut impl RayTally,
     ) -> bool {
         let (ray, distance) = Ray::spawn_to(p, ng, p_light, n_light);
-        tally.shadow_ray(&ray, distance);
-        !self.accel.occluded(&ray, distance)
+        self.ray_unoccluded(&ray, distance, tally)
     }
 
     /// True when nothing blocks the light of `sample` from reaching the surface point `point`:
@@ -467,8 +466,14 @@ impl World {
         } else {
             (point.spawn(sample.wi), f32::INFINITY)
         };
-        tally.shadow_ray(&ray, t_max);
-        !self.accel.occluded(&ray, t_max)
+        self.ray_unoccluded(&ray, t_max, tally)
+    }
+
+    /// True when nothing blocks `ray` for `0 < t < t_max`, told to `tally` as one shadow ray.
+    #[inline(always)]
+    fn ray_unoccluded(&self, ray: &Ray, t_max: f32, tally: &mut impl RayTally) -> bool {
+        tally.shadow_ray(ray, t_max);
+        !self.accel.occluded(ray, t_max)
     }
 
     /// Radiance emitted by the surface of `surface` towards the unit direction `w`, one-sided by

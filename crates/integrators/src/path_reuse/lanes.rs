@@ -1,6 +1,7 @@
 //! The connections of a path reuse block computed four paths at a time: its first vertices laid
-//! out lane by lane (structure of arrays), and their densities and shadow rays towards one second
-//! vertex, as [`super::combine`] needs them.
+//! out lane by lane (structure of arrays), their densities and shadow rays towards one second
+//! vertex, and the block's estimates that the shares of each second vertex are added to, as
+//! [`super::combine`] needs them.
 
 use super::{MAX_BLOCK_PATHS, ReusablePath, SecondVertex};
 use geometry::{Rayx4, SpawnPointx4, Vec3x4};
