@@ -21,8 +21,9 @@ use crate::path_reuse::{FirstVertex, ReusablePath, SecondVertex};
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{DirectSamples, LightSelectionMode, Mis, PathSettings};
 use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf};
+use crate::world::shadow_ray;
 use crate::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World};
-use geometry::SpawnPoint;
+use geometry::{Ray, SpawnPoint};
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
 use materials::Bsdf;
@@ -62,6 +63,30 @@ struct PreviousVertex {
     /// True at the camera and after a delta bounce: light sampling could not have found this
     /// emission, so it counts in full.
     delta: bool,
+}
+
+/// Direct light a light sample brings to a vertex if its shadow ray is not blocked: the walk
+/// traces that ray only once it has drawn the vertex's next direction, so that the shadow ray
+/// starts from inputs long computed and the next ray's setup overlaps with its end.
+#[derive(Clone, Copy, Debug)]
+struct ShadowedLight {
+    ray: Ray,
+    t_max: f32,
+    /// Radiance (W m⁻² sr⁻¹, RGB) the light adds to the estimate when unblocked, throughput and
+    /// MIS weight included.
+    radiance: Vec3,
+}
+
+impl ShadowedLight {
+    /// `radiance` if nothing blocks the shadow ray (told to `counters`), else zero.
+    #[inline(always)]
+    fn traced(self, world: &World, counters: &mut impl RayTally) -> Vec3 {
+        if world.ray_unoccluded(&self.ray, self.t_max, counters) {
+            self.radiance
+        } else {
+            Vec3::ZERO
+        }
+    }
 }
 
 impl PathIntegrator {
@@ -242,49 +267,67 @@ impl PathIntegrator {
             }
 
             // No light sampling at the last vertex: the light would be one vertex too many.
+            let mut shadowed = None;
             if !last {
-                radiance += throughput
-                    * self.light_at_vertex(world, surface, &point, wo, sampler, counters);
-            }
-
-            let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
-            let u_dir = sampler.next_2d();
-            let Some(next) = self.next_direction(surface, wo, u_lobe, u_dir) else {
-                break;
-            };
-            let passes_null = settings.skip_null_vertices && next.is_null;
-            if last && !passes_null {
-                break;
-            }
-            throughput *= next.weight;
-            eta_scale *= next.eta * next.eta;
-            seen_through_delta &= next.is_delta;
-            if depth == 1 {
-                first_vertex_non_delta = !next.is_delta;
-            } else {
-                caustic_chain = first_vertex_non_delta && next.is_delta;
-            }
-            if let Some(roulette) = settings.russian_roulette
-                && depth >= roulette.start_depth
-            {
-                let u_survive = sampler.next_1d();
-                let survival = ((throughput * prefix).max_element() * eta_scale).clamp(0.0, 1.0);
-                if u_survive >= survival {
-                    break;
+                if settings.sample_lights {
+                    shadowed = self
+                        .light_sample_at_vertex(world, surface, &point, wo, sampler)
+                        .map(|light| ShadowedLight {
+                            radiance: throughput * light.radiance,
+                            ..light
+                        });
+                } else if !surface.bsdf.is_delta() {
+                    radiance += throughput * delta_lights(world, surface, &point, wo, counters);
                 }
-                throughput /= survival;
             }
-            if throughput == Vec3::ZERO {
-                break;
-            }
-            previous = PreviousVertex {
-                p: surface.hit.p,
-                pdf_dir: next.pdf_solid_angle,
-                delta: next.is_delta,
+            let next_ray = 'next: {
+                let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
+                let u_dir = sampler.next_2d();
+                let Some(next) = self.next_direction(surface, wo, u_lobe, u_dir) else {
+                    break 'next None;
+                };
+                let passes_null = settings.skip_null_vertices && next.is_null;
+                if last && !passes_null {
+                    break 'next None;
+                }
+                throughput *= next.weight;
+                eta_scale *= next.eta * next.eta;
+                seen_through_delta &= next.is_delta;
+                if depth == 1 {
+                    first_vertex_non_delta = !next.is_delta;
+                } else {
+                    caustic_chain = first_vertex_non_delta && next.is_delta;
+                }
+                if let Some(roulette) = settings.russian_roulette
+                    && depth >= roulette.start_depth
+                {
+                    let u_survive = sampler.next_1d();
+                    let survival =
+                        ((throughput * prefix).max_element() * eta_scale).clamp(0.0, 1.0);
+                    if u_survive >= survival {
+                        break 'next None;
+                    }
+                    throughput /= survival;
+                }
+                if throughput == Vec3::ZERO {
+                    break 'next None;
+                }
+                previous = PreviousVertex {
+                    p: surface.hit.p,
+                    pdf_dir: next.pdf_solid_angle,
+                    delta: next.is_delta,
+                };
+                depth += u32::from(!passes_null);
+                Some(point.spawn(surface.frame.to_world(next.wi)))
             };
-            ray = point.spawn(surface.frame.to_world(next.wi));
+            if let Some(light) = shadowed {
+                radiance += light.traced(world, counters);
+            }
+            let Some(next_ray) = next_ray else {
+                break;
+            };
+            ray = next_ray;
             t_max = f32::INFINITY;
-            depth += u32::from(!passes_null);
         }
         match second {
             Some(mut second) => {
@@ -303,33 +346,24 @@ impl PathIntegrator {
         }
     }
 
-    /// Light that `surface` reflects towards `wo` straight from the lights, by next event
-    /// estimation (drawing its numbers at every vertex) when it is on, else from the delta lights
-    /// alone; nothing at a delta surface.
+    /// Next event estimation at `surface` (drawing its numbers at every vertex, as the walk's
+    /// light sample): the light it reflects towards `wo` if the shadow ray is not blocked;
+    /// `None` at a delta surface or where the sample carries nothing.
     #[inline(always)]
-    fn light_at_vertex(
+    fn light_sample_at_vertex(
         &self,
         world: &World,
         surface: &SurfaceHit<'_>,
         point: &SpawnPoint,
         wo: Vec3,
         sampler: &mut impl Sampler,
-        counters: &mut impl RayTally,
-    ) -> Vec3 {
-        if self.settings.sample_lights {
-            let u_choice = next_1d_if(sampler, self.draws_light_choice);
-            let u_point = sampler.next_2d();
-            if surface.bsdf.is_delta() {
-                return Vec3::ZERO;
-            }
-            self.direct_light(
-                world, surface, point, wo, u_choice, u_point, ONE_EACH, counters,
-            )
-        } else if surface.bsdf.is_delta() {
-            Vec3::ZERO
-        } else {
-            delta_lights(world, surface, point, wo, counters)
+    ) -> Option<ShadowedLight> {
+        let u_choice = next_1d_if(sampler, self.draws_light_choice);
+        let u_point = sampler.next_2d();
+        if surface.bsdf.is_delta() {
+            return None;
         }
+        self.light_sample(world, surface, point, wo, u_choice, u_point, ONE_EACH)
     }
 
     /// Mitsuba's `direct` integrator at the camera ray's hit `surface`: `samples.light` light
@@ -356,10 +390,11 @@ impl PathIntegrator {
             for _ in 0..samples.light {
                 let u_choice = next_1d_if(sampler, self.draws_light_choice);
                 let u_point = sampler.next_2d();
-                if !surface.bsdf.is_delta() {
-                    radiance += self.direct_light(
-                        world, surface, point, wo, u_choice, u_point, counts, counters,
-                    ) / counts.light;
+                if !surface.bsdf.is_delta()
+                    && let Some(light) =
+                        self.light_sample(world, surface, point, wo, u_choice, u_point, counts)
+                {
+                    radiance += light.traced(world, counters) / counts.light;
                 }
             }
         } else if samples.light > 0 && !surface.bsdf.is_delta() {
@@ -444,11 +479,12 @@ impl PathIntegrator {
         throughput * emitted * weight
     }
 
-    /// Direct light at `surface` by one shadow ray, MIS-weighted (against `counts` samples of
-    /// each strategy) if MIS is on.
+    /// Direct light at `surface` by one light sample, MIS-weighted (against `counts` samples of
+    /// each strategy) if MIS is on, with the shadow ray that decides it; `None` where the
+    /// sample carries nothing.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn direct_light(
+    fn light_sample(
         &self,
         world: &World,
         surface: &SurfaceHit<'_>,
@@ -457,12 +493,9 @@ impl PathIntegrator {
         u_choice: f32,
         u_point: Vec2,
         counts: StrategyCounts,
-        counters: &mut impl RayTally,
-    ) -> Vec3 {
-        let Some(selector) = &self.selector else {
-            return Vec3::ZERO;
-        };
-        let Some(chosen) = choose_light(
+    ) -> Option<ShadowedLight> {
+        let selector = self.selector.as_ref()?;
+        let chosen = choose_light(
             self.settings.light_selection,
             selector,
             world.lights(),
@@ -470,13 +503,9 @@ impl PathIntegrator {
             wo,
             u_choice,
             u_point,
-        ) else {
-            return Vec3::ZERO;
-        };
+        )?;
         let sample = chosen.sample;
-        if !world.light_unoccluded(point, &sample, counters) {
-            return Vec3::ZERO;
-        }
+        let (ray, t_max) = shadow_ray(point, &sample);
         let mis_weight = if sample.is_delta {
             1.0
         } else {
@@ -487,7 +516,11 @@ impl PathIntegrator {
             };
             self.heuristic(counts.light, chosen.pdf_for_mis, counts.bsdf, pdf_direction)
         };
-        chosen.f_cos * sample.radiance * (chosen.weight * mis_weight)
+        Some(ShadowedLight {
+            ray,
+            t_max,
+            radiance: chosen.f_cos * sample.radiance * (chosen.weight * mis_weight),
+        })
     }
 
     /// The next direction of the walk: by the BSDF's sampling routine or without importance.

@@ -461,17 +461,13 @@ impl World {
         sample: &LightSample,
         tally: &mut impl RayTally,
     ) -> bool {
-        let (ray, t_max) = if sample.distance.is_finite() {
-            point.spawn_to(sample.p_light, sample.n_light)
-        } else {
-            (point.spawn(sample.wi), f32::INFINITY)
-        };
+        let (ray, t_max) = shadow_ray(point, sample);
         self.ray_unoccluded(&ray, t_max, tally)
     }
 
     /// True when nothing blocks `ray` for `0 < t < t_max`, told to `tally` as one shadow ray.
     #[inline(always)]
-    fn ray_unoccluded(&self, ray: &Ray, t_max: f32, tally: &mut impl RayTally) -> bool {
+    pub(crate) fn ray_unoccluded(&self, ray: &Ray, t_max: f32, tally: &mut impl RayTally) -> bool {
         tally.shadow_ray(ray, t_max);
         !self.accel.occluded(ray, t_max)
     }
@@ -500,5 +496,17 @@ impl World {
         self.environment.map_or(Vec3::ZERO, |e| {
             self.lights[e as usize].radiance_from_direction(dir)
         })
+    }
+}
+
+/// The shadow ray from the surface point `point` to the light of `sample`, and the `t_max` to
+/// trace it with: the segment to its point, or for lights at infinity (the environment,
+/// directional lights) the ray escaping the scene.
+#[inline(always)]
+pub(crate) fn shadow_ray(point: &SpawnPoint, sample: &LightSample) -> (Ray, f32) {
+    if sample.distance.is_finite() {
+        point.spawn_to(sample.p_light, sample.n_light)
+    } else {
+        (point.spawn(sample.wi), f32::INFINITY)
     }
 }
