@@ -74,11 +74,23 @@ fn evaluate(
     u_point: Vec2,
 ) -> Option<ChosenLight> {
     // The common cases inlined, as the walk inlines a diffuse BSDF's sampling: an area light on
-    // a mesh, seen from a diffuse surface.
-    let sample = match light {
-        Light::Mesh(mesh) => mesh.sample_li(surface.hit.p, u_point),
-        light => light.sample_li(surface.hit.p, u_point),
-    }?;
+    // a mesh, seen from a diffuse surface. Each arm finishes on its own: joined, both would
+    // keep their sample where the out-of-line call stores its one, and the inlined sample,
+    // reloaded from there in pieces that straddle how it was stored, would stall.
+    match light {
+        Light::Mesh(mesh) => with_bsdf(mesh.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
+        light => with_bsdf(light.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
+    }
+}
+
+/// [`evaluate`] once the light has given its `sample`.
+#[inline(always)]
+fn with_bsdf(
+    sample: LightSample,
+    pmf: f32,
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+) -> Option<ChosenLight> {
     let wi = surface.frame.to_local(sample.wi);
     let (f, pdf_bsdf_solid_angle) = match surface.bsdf {
         Bsdf::Diffuse(diffuse) => diffuse.eval_with_pdf(wo, wi),
