@@ -50,6 +50,17 @@ impl SpawnPoint {
         }
     }
 
+    /// [`Self::spawn`] for a direction of unit length already (within rounding, as a BSDF
+    /// sample turned into world space is), kept as given: what `spawn` would do but for the
+    /// normalisation, whose square root and division the next ray's traversal would wait for.
+    #[inline]
+    pub fn spawn_unit(&self, dir: Vec3) -> Ray {
+        Ray {
+            origin: self.origin_towards(dir),
+            dir,
+        }
+    }
+
     /// [`Ray::spawn_to`] from this point to `target_p` (unit geometric normal `target_ng`, zero
     /// for a point light): the shadow ray and its `t_max`.
     #[inline(always)]
@@ -97,6 +108,13 @@ mod tests {
             let point = SpawnPoint::new(p, ng);
             let what = format!("p {p:?}, ng {ng:?}, dir {dir:?}");
             assert_eq!(point.spawn(dir), Ray::spawn(p, ng, dir), "spawn: {what}");
+            let unit = dir.normalize();
+            let kept = point.spawn_unit(unit);
+            assert_eq!(kept.dir, unit, "spawn_unit changed the direction: {what}");
+            // In the tangent plane the side is a coin toss that normalising again can flip.
+            if ng.dot(unit).abs() > 1e-4 {
+                assert_eq!(kept.origin, point.spawn(unit).origin, "spawn_unit: {what}");
+            }
             let target = p + 3.0 * dir;
             assert_eq!(
                 point.spawn_to(target, -ng),

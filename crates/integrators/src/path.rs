@@ -318,7 +318,7 @@ impl PathIntegrator {
                     delta: next.is_delta,
                 };
                 depth += u32::from(!passes_null);
-                Some(point.spawn(surface.frame.to_world(next.wi)))
+                Some(point.spawn_unit(surface.frame.to_world(next.wi)))
             };
             if let Some(light) = shadowed {
                 radiance += light.traced(world, counters);
@@ -411,7 +411,7 @@ impl PathIntegrator {
                 pdf_dir: next.pdf_solid_angle,
                 delta: next.is_delta,
             };
-            let ray = point.spawn(surface.frame.to_world(next.wi));
+            let ray = point.spawn_unit(surface.frame.to_world(next.wi));
             let weight = next.weight / counts.bsdf;
             radiance += match world.intersect(&ray, counters, &mut slot) {
                 Some(found) => self.emission_found(
