@@ -70,7 +70,9 @@ struct PreviousVertex {
 /// starts from inputs long computed and the next ray's setup overlaps with its end.
 #[derive(Clone, Copy, Debug)]
 struct ShadowedLight {
+    /// The shadow ray from the vertex towards the light's point.
     ray: Ray,
+    /// Where the shadow ray ends (world units; ∞ for lights at infinity).
     t_max: f32,
     /// Radiance (W m⁻² sr⁻¹, RGB) the light adds to the estimate when unblocked, throughput and
     /// MIS weight included.
