@@ -73,8 +73,8 @@ impl MeshAreaLight {
 
     /// A point uniform by area on the mesh, seen from `p`; `None` when it faces away or
     /// coincides with `p`. Always inlined: returned through memory, its sample is reloaded in
-    /// pieces that straddle how it was stored, which stalls (3% of the path loop's time on the
-    /// Cornell box).
+    /// pieces that straddle how it was stored, which stalls (3.7% of the path loop's perf
+    /// samples on the Cornell box).
     #[inline(always)]
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         let (p_light, n_light) = self.sample_point(u);
@@ -90,7 +90,7 @@ impl MeshAreaLight {
     /// A point uniform by area with `u` ∈ [0, 1)², and the unit normal there. Returned as
     /// 16-byte vectors: a caller that is not inlined with it then reloads them whole from
     /// where they were stored whole (reloading a 12-byte vector stored in two parts stalls,
-    /// 4% of the path loop's time on the Cornell box).
+    /// 4% of the path loop's perf samples on the Cornell box).
     #[inline]
     fn sample_point(&self, u: Vec2) -> (Vec3A, Vec3A) {
         let (p, n) = if let Some(quad) = &self.parallelogram {
