@@ -17,11 +17,12 @@
 
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette};
+use render::auto::REUSE_BLOCK;
 use render::driver::RenderOptions;
 use render::image::Image;
 use render::metrics::{relmse, relmse_per_pixel};
 use render::session::{film_filter, render_scene};
-use render::technique::{AUTO_REUSE_BLOCK, RIS_CANDIDATES};
+use render::technique::RIS_CANDIDATES;
 use render::technique::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use scene::{BsdfDesc, RenderScene};
@@ -593,9 +594,7 @@ fn path_reuse_on_the_cornell_box(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "cbox")?;
     let without = subject.mis_with_roulette();
     let with = PathSettings {
-        path_reuse: Some(PathReuse {
-            block: AUTO_REUSE_BLOCK,
-        }),
+        path_reuse: Some(PathReuse { block: REUSE_BLOCK }),
         ..without
     };
     switch_claim(

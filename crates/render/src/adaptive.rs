@@ -32,8 +32,11 @@ pub const MIN_SHARE: f64 = 0.25;
 pub const MAX_SHARE: f64 = 4.0;
 /// The pilot takes this fraction of the budget (samples or seconds)...
 pub const PILOT_FRACTION: f64 = 1.0 / 16.0;
-/// ...but at most this many samples per pixel.
+/// ...but at most this many samples per pixel...
 pub const MAX_PILOT_SPP: u32 = 16;
+/// ...and at least this many: a pixel's variance needs two samples. A budget of fewer than
+/// twice this many is not split (the render reports that it did not sample adaptively).
+pub const MIN_PILOT_SPP: u32 = 2;
 
 /// Cost of a sample apart from its rays, in units of an occlusion ray (camera ray set-up,
 /// sampler start, film update).
@@ -88,15 +91,16 @@ pub fn pilot_seed(seed: u32) -> u32 {
 }
 
 /// The budgets of the pilot and of the image proper for a render with `budget`, or `None` when
-/// the budget is too small to split (fewer than 2 samples per pixel).
+/// the budget is too small to split (fewer than 2 × [`MIN_PILOT_SPP`] samples per pixel).
 ///
-/// The pilot gets [`PILOT_FRACTION`] of the samples (at least 1, at most [`MAX_PILOT_SPP`]) or
-/// of the time; the image gets the rest of the samples (its `max_spp` is the mean per pixel).
+/// The pilot gets [`PILOT_FRACTION`] of the samples (at least [`MIN_PILOT_SPP`], at most
+/// [`MAX_PILOT_SPP`]) or of the time; the image gets the rest of the samples (its `max_spp` is
+/// the mean per pixel).
 /// A time limit is shared out by the caller: the image gets what the pilot leaves.
 pub fn split_budget(budget: &RenderBudget) -> Option<(RenderBudget, RenderBudget)> {
     let pilot_spp = match budget.max_spp {
-        Some(spp) if spp < 2 => return None,
-        Some(spp) => ((f64::from(spp) * PILOT_FRACTION) as u32).clamp(1, MAX_PILOT_SPP),
+        Some(spp) if spp < 2 * MIN_PILOT_SPP => return None,
+        Some(spp) => ((f64::from(spp) * PILOT_FRACTION) as u32).clamp(MIN_PILOT_SPP, MAX_PILOT_SPP),
         None => MAX_PILOT_SPP,
     };
     let pilot = RenderBudget {
@@ -332,7 +336,10 @@ mod tests {
         let (pilot, image) = split_budget(&RenderBudget::spp(256)).expect("splits");
         assert_eq!((pilot.max_spp, image.max_spp), (Some(16), Some(240)));
         let (pilot, image) = split_budget(&RenderBudget::spp(20)).expect("splits");
-        assert_eq!((pilot.max_spp, image.max_spp), (Some(1), Some(19)));
+        assert_eq!((pilot.max_spp, image.max_spp), (Some(2), Some(18)));
+        let (pilot, image) = split_budget(&RenderBudget::spp(4)).expect("splits");
+        assert_eq!((pilot.max_spp, image.max_spp), (Some(2), Some(2)));
+        assert_eq!(split_budget(&RenderBudget::spp(3)), None);
         assert_eq!(split_budget(&RenderBudget::spp(1)), None);
         let (pilot, image) = split_budget(&RenderBudget::seconds(2.0)).expect("splits");
         assert_eq!(pilot.max_seconds, Some(0.125));

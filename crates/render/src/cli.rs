@@ -3,7 +3,7 @@
 //! ```text
 //! strata render SCENE.xml --out OUT.exr [--spp N] [--time SECONDS]
 //!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise|sobol]
-//!               [--rr on|off] [--adaptive] [--light-tracing] [--path-reuse [off|2|4]] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
+//!               [--rr on|off] [--adaptive [on|off]] [--light-tracing] [--path-reuse [off|2|4]] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
 //!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
 //!               [-D NAME=VALUE ...]
 //! strata diff A.exr B.exr
@@ -115,12 +115,15 @@ pub struct RenderArgs {
     /// Russian roulette on or off, on top of the preset.
     #[arg(long, value_enum)]
     pub rr: Option<Switch>,
-    /// Adaptive sampling: a pilot render (1/16 of the budget, at most 16 samples per pixel, not
-    /// part of the image) estimates each pixel's relative noise, and pixels get samples in
-    /// proportion to it, which minimises the relative MSE. --spp is then the mean over pixels,
-    /// the pilot's samples included. Not with --state or --resume.
-    #[arg(long, conflicts_with_all = ["state", "resume"])]
-    pub adaptive: bool,
+    /// Adaptive sampling (`on` when given without a value): a pilot render (1/16 of the
+    /// budget, 2 to 16 samples per pixel, not part of the image) estimates each pixel's
+    /// relative noise, and pixels get samples in proportion to it, which minimises the relative
+    /// MSE. --spp is then the mean over pixels, the pilot's samples included. `auto` turns it on
+    /// by itself wherever the budget pays for the pilot (32 spp or more, or a time budget),
+    /// other presets only when asked. Not with --state or --resume.
+    #[arg(long, value_enum, value_name = "on|off", num_args = 0..=1, default_missing_value = "on",
+          conflicts_with_all = ["state", "resume"])]
+    pub adaptive: Option<Switch>,
     /// Caustics by light tracing: light seen on a diffuse or glossy surface after mirrors or
     /// glass (light → specular → surface → camera) is traced from the lights and connected to
     /// the camera instead of being found by chance, splatting into the pixels the filter
@@ -314,7 +317,7 @@ mod tests {
             "--light-tracing",
         ]);
         assert_eq!(r.scene, Path::new("scene.xml"));
-        assert!(r.adaptive && r.light_tracing);
+        assert!(r.adaptive == Some(Switch::On) && r.light_tracing);
         assert_eq!(r.out, Path::new("o.exr"));
         assert_eq!((r.spp, r.time), (Some(64), Some(0.5)));
         assert_eq!(r.integrator, IntegratorPreset::Mis);
@@ -343,7 +346,7 @@ mod tests {
             (None, None, None, None, None)
         );
         assert_eq!((r.state, r.resume), (None, None));
-        assert!(!r.adaptive && !r.light_tracing);
+        assert!(r.adaptive.is_none() && !r.light_tracing);
     }
 
     #[test]

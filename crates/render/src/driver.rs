@@ -17,6 +17,7 @@ use glam::{UVec2, Vec3};
 use rayon::prelude::*;
 
 pub use crate::adaptive::Allocation;
+use crate::auto::TechniquePilot;
 pub use crate::budget::{BudgetError, RenderBudget};
 use crate::film::{Film, PixelSum};
 use crate::progress::Progress;
@@ -129,6 +130,11 @@ pub struct RenderOutput {
     /// Samples per pixel of an adaptive-sampling pilot, rendered but not in the film (0 without
     /// one); counted in `spp`, `passes`, `seconds` and `non_finite`.
     pub pilot_spp: u32,
+    /// `auto`'s technique pilot and its choice (`None` for other presets); its time is counted
+    /// in `seconds`.
+    pub auto: Option<TechniquePilot>,
+    /// Why adaptive sampling was asked for and not done (a budget too small to split), if so.
+    pub adaptive_skipped: Option<String>,
 }
 
 /// Renders a `width × height` image until `budget` is spent, on the current rayon thread pool
@@ -316,6 +322,8 @@ where
         threads,
         non_finite,
         pilot_spp: 0,
+        auto: None,
+        adaptive_skipped: None,
     })
 }
 

@@ -23,6 +23,7 @@
 
 pub mod adaptive;
 pub mod atomic_write;
+pub mod auto;
 pub mod budget;
 pub mod cli;
 pub mod commands;

@@ -1,12 +1,14 @@
 //! One render of a built scene as planned, on the current thread pool: the part of
 //! `strata render` that tests and tools call in-process.
 
-use crate::adaptive::{Allocation, PixelCosts, pilot_seed, split_budget};
+use crate::adaptive::{Allocation, MIN_PILOT_SPP, PixelCosts, pilot_seed, split_budget};
+use crate::auto::{self, AutoChoice, PilotRenders, TechniquePilot, Trials};
 use crate::driver::{
     BudgetError, LightPaths, MAX_BLOCK_PIXELS, RenderBudget, RenderOptions, RenderOutput,
     render_blocks, render_with_light_paths,
 };
 use crate::filter::{Filter, FilterError};
+use crate::image::Image;
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
 use integrators::path_reuse::{self, ReusablePath};
@@ -59,9 +61,13 @@ pub fn render_scene(
         shadow_rays.fetch_add(counters.shadow_rays, Ordering::Relaxed);
     };
     let output = render_image(scene, plan, filter, options, &finish)?;
+    let pilot = output
+        .auto
+        .as_ref()
+        .map_or(RayCounters::default(), |a| a.rays);
     let counters = RayCounters {
-        rays: rays.load(Ordering::Relaxed),
-        shadow_rays: shadow_rays.load(Ordering::Relaxed),
+        rays: rays.load(Ordering::Relaxed) + pilot.rays,
+        shadow_rays: shadow_rays.load(Ordering::Relaxed) + pilot.shadow_rays,
     };
     Ok((output, counters))
 }
@@ -90,9 +96,131 @@ pub fn render_scene_recording(
 }
 
 /// Renders the image on the current thread pool, each worker telling its rays to a fresh `T`
-/// that is handed to `finish` when the worker is done; with adaptive sampling, first the pilot
-/// (whose rays are told too) and then the image with the pilot's allocation.
+/// that is handed to `finish` when the worker is done. For `auto` ([`RenderPlan::trials`]), the
+/// technique pilot first chooses the settings ([`crate::auto`]); with adaptive sampling, a pilot
+/// (whose rays are told too) then allocates the image's samples.
 fn render_image<T: RayTally + Default + Send>(
+    scene: &RenderScene,
+    plan: &RenderPlan,
+    filter: &Filter,
+    options: &RenderOptions,
+    finish: &(dyn Fn(&mut T) + Sync),
+) -> Result<RenderOutput, BudgetError> {
+    plan.budget.validate()?;
+    let Some(choice) = choose_techniques(scene, plan, filter, options)? else {
+        return render_adaptive(scene, plan, filter, options, finish);
+    };
+    let chosen = RenderPlan {
+        transport: Transport::Path(choice.choice.settings),
+        trials: Trials::default(),
+        budget: RenderBudget {
+            max_seconds: plan
+                .budget
+                .max_seconds
+                .map(|s| (s - choice.seconds).max(0.0)),
+            ..plan.budget
+        },
+        ..*plan
+    };
+    let mut output = render_adaptive(scene, &chosen, filter, options, finish)?;
+    output.seconds += choice.seconds;
+    output.auto = Some(choice);
+    Ok(output)
+}
+
+/// Runs `auto`'s technique pilot when `plan` has trials (`None` otherwise), or keeps the base
+/// when the sample budget cannot pay for it. The pilot renders a thumbnail with the independent
+/// sampler and seeds of its own, so none of its samples is in the image.
+fn choose_techniques(
+    scene: &RenderScene,
+    plan: &RenderPlan,
+    filter: &Filter,
+    options: &RenderOptions,
+) -> Result<Option<TechniquePilot>, BudgetError> {
+    let Transport::Path(base) = plan.transport else {
+        return Ok(None);
+    };
+    if !plan.trials.any() {
+        return Ok(None);
+    }
+    let (width, height) = (scene.desc.film.width, scene.desc.film.height);
+    let Some(thumbnail) = auto::thumbnail_size(width, height, &plan.trials, plan.budget.max_spp)
+    else {
+        let reason = format!(
+            "{} spp: a pilot of {} pixels or more would take more than {}% of the samples",
+            plan.budget.max_spp.unwrap_or(0),
+            auto::MIN_PILOT_PIXELS,
+            auto::MAX_PILOT_SHARE * 100.0
+        );
+        return Ok(Some(TechniquePilot {
+            choice: AutoChoice::unmeasured(base, reason),
+            seconds: 0.0,
+            rays: RayCounters::default(),
+        }));
+    };
+    let camera = Camera::new(&scene.desc.sensor, thumbnail.0, thumbnail.1);
+    let view = View {
+        camera: &camera,
+        width: thumbnail.0,
+        height: thumbnail.1,
+    };
+    let rays = AtomicU64::new(0);
+    let shadow_rays = AtomicU64::new(0);
+    let count = |counters: &mut RayCounters| {
+        rays.fetch_add(counters.rays, Ordering::Relaxed);
+        shadow_rays.fetch_add(counters.shadow_rays, Ordering::Relaxed);
+    };
+    let quiet = RenderOptions {
+        stop: options.stop.clone(),
+        ..RenderOptions::quiet()
+    };
+    let start = std::time::Instant::now();
+    let choice = auto::choose(base, &plan.trials, thumbnail, |settings| {
+        let before = RayCounters {
+            rays: rays.load(Ordering::Relaxed),
+            shadow_rays: shadow_rays.load(Ordering::Relaxed),
+        };
+        let mut images = Vec::with_capacity(2);
+        for replica in 0..2 {
+            let pilot_plan = RenderPlan {
+                transport: Transport::Path(*settings),
+                sampler: plan.sampler,
+                seed: auto::pilot_seed(plan.seed, replica),
+                budget: RenderBudget::spp(auto::PILOT_SPP),
+                sampler_spp: auto::PILOT_SPP,
+                adaptive: false,
+                trials: Trials::default(),
+            };
+            let context = Context {
+                view,
+                ..Context::new(scene, &pilot_plan, filter, &quiet, &count)
+            };
+            images.push(render_sampled(&context)?.film.to_image());
+        }
+        let after = RayCounters {
+            rays: rays.load(Ordering::Relaxed),
+            shadow_rays: shadow_rays.load(Ordering::Relaxed),
+        };
+        let [a, b]: [Image; 2] = images.try_into().expect("two renders");
+        Ok(PilotRenders {
+            images: [a, b],
+            rays: after.since(before),
+            samples: 2 * u64::from(auto::PILOT_SPP) * u64::from(thumbnail.0 * thumbnail.1),
+        })
+    })?;
+    Ok(Some(TechniquePilot {
+        choice,
+        seconds: start.elapsed().as_secs_f64(),
+        rays: RayCounters {
+            rays: rays.into_inner(),
+            shadow_rays: shadow_rays.into_inner(),
+        },
+    }))
+}
+
+/// Renders the image as `plan` says, with an adaptive-sampling pilot first where the plan asks
+/// for one and the budget can be split.
+fn render_adaptive<T: RayTally + Default + Send>(
     scene: &RenderScene,
     plan: &RenderPlan,
     filter: &Filter,
@@ -105,9 +233,15 @@ fn render_image<T: RayTally + Default + Send>(
         None
     };
     let Some((pilot_budget, image_budget)) = split else {
-        return render_sampled(&Context::new(scene, plan, filter, options, finish));
+        let mut output = render_sampled(&Context::new(scene, plan, filter, options, finish))?;
+        if plan.adaptive && options.resume.is_none() {
+            output.adaptive_skipped = Some(format!(
+                "{} spp is too few to split into a pilot of {MIN_PILOT_SPP} and the image",
+                plan.budget.max_spp.unwrap_or(0)
+            ));
+        }
+        return Ok(output);
     };
-    plan.budget.validate()?;
     let pilot_spp = pilot_budget.max_spp.unwrap_or(1);
     let pilot_plan = RenderPlan {
         seed: pilot_seed(plan.seed),
@@ -166,7 +300,7 @@ fn render_sampled<T: RayTally + Default + Send>(
 ) -> Result<RenderOutput, BudgetError> {
     let (seed, spp) = (context.plan.seed, context.plan.sampler_spp);
     let built = Integrators::new(context.scene, context.plan);
-    let prefix = built.pattern_dimensions(context.scene.camera.has_lens());
+    let prefix = built.pattern_dimensions(context.view.camera.has_lens());
     match context.plan.sampler {
         SamplerKind::Independent => {
             render_with(context, &built, || IndependentSampler::new(seed, spp))
@@ -231,6 +365,8 @@ impl Integrators {
 /// go when it is done, and whether this is an adaptive-sampling pilot.
 struct Context<'a, T> {
     scene: &'a RenderScene,
+    /// The camera and image size rendered: the scene's, or a pilot's thumbnail.
+    view: View<'a>,
     plan: &'a RenderPlan,
     filter: &'a Filter,
     options: &'a RenderOptions,
@@ -251,6 +387,11 @@ impl<'a, T> Context<'a, T> {
     ) -> Self {
         Self {
             scene,
+            view: View {
+                camera: &scene.camera,
+                width: scene.desc.film.width,
+                height: scene.desc.film.height,
+            },
             plan,
             filter,
             options,
@@ -258,6 +399,14 @@ impl<'a, T> Context<'a, T> {
             pilot_costs: None,
         }
     }
+}
+
+/// What a render looks through: a camera and the image size it was made for.
+#[derive(Clone, Copy)]
+struct View<'a> {
+    camera: &'a Camera,
+    width: u32,
+    height: u32,
 }
 
 /// [`render_sampled`] with the integrators `built` and the samplers `new_sampler` makes.
@@ -268,6 +417,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
 ) -> Result<RenderOutput, BudgetError> {
     let Context {
         scene,
+        view,
         plan,
         filter,
         options,
@@ -275,8 +425,8 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         pilot_costs: costs,
     } = *context;
     let world = &scene.world;
-    let camera: &Camera = &scene.camera;
-    let (width, height) = (scene.desc.film.width, scene.desc.film.height);
+    let camera: &Camera = view.camera;
+    let (width, height) = (view.width, view.height);
     let Integrators {
         integrator,
         light_tracer,

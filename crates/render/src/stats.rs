@@ -44,6 +44,16 @@ pub struct RenderStats {
     pub inf_count: u64,
     /// The techniques that were on, e.g. `"nee"`, `"mis-power"`, `"russian-roulette"`.
     pub techniques: Vec<String>,
+    /// `auto`'s technique pilot: what it measured and chose (see `render::auto`); absent for
+    /// the other presets.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub auto_choice: Option<String>,
+    /// Seconds the technique pilot took (counted in `seconds`); 0 without one.
+    #[serde(default)]
+    pub auto_pilot_seconds: f64,
+    /// Why adaptive sampling was asked for but not done, if it was not.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub adaptive_skipped: Option<String>,
 }
 
 impl RenderStats {
@@ -62,6 +72,9 @@ impl RenderStats {
             threads: output.threads,
             nan_count: output.non_finite.nan,
             inf_count: output.non_finite.inf,
+            auto_choice: output.auto.as_ref().map(|a| a.choice.reason()),
+            auto_pilot_seconds: output.auto.as_ref().map_or(0.0, |a| a.seconds),
+            adaptive_skipped: output.adaptive_skipped.clone(),
             ..Self::default()
         }
     }
@@ -104,6 +117,9 @@ mod tests {
             nan_count: 1,
             inf_count: 2,
             techniques: vec!["nee".into(), "mis-power".into()],
+            auto_choice: Some("chose base".into()),
+            auto_pilot_seconds: 0.125,
+            adaptive_skipped: None,
         };
         let value: serde_json::Value = serde_json::from_str(&stats.to_json()).unwrap();
         for field in [

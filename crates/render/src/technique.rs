@@ -1,6 +1,7 @@
 //! Which light transport, sampler and budget a `strata render` runs with: the command line's
 //! flags on top of the scene file's settings, and the `auto` choice from the scene's features.
 
+use crate::auto::{self, Trials};
 use crate::cli::{
     Cli, Command, IntegratorPreset, RenderArgs, ReuseFlag, SamplerKind as SamplerFlag,
 };
@@ -13,27 +14,15 @@ use integrators::{
 use sampling::sampler::SamplerKind;
 use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
 
-/// Candidates per RIS light choice in the `ris` preset and in `auto`. Measured on the
-/// many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
+/// Candidates per RIS light choice in the `ris` preset and in `auto`'s trial of RIS. Measured
+/// on the many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
 /// candidates 1.41x with the independent sampler and 1.87x with blue noise, 8 candidates 1.34x
 /// and 1.64x (each candidate costs about 4% of a path there).
 pub const RIS_CANDIDATES: u32 = 4;
 
-/// Block edge of the path reuse `auto` turns on: on the Cornell box 4 × 4 blocks cut the relMSE
-/// at equal time 2.6× and 2 × 2 blocks 1.9× (2026-12-03); where reuse does not pay, the larger
-/// blocks lose more (`manylights`: 1.2× against 1.02× higher relMSE).
-pub const AUTO_REUSE_BLOCK: u32 = 4;
-
-/// With at least this many lights, `auto` selects lights by RIS rather than by power.
-pub const AUTO_RIS_MIN_LIGHTS: usize = 16;
-
-/// With glossy materials and at least this many area lights, `auto` selects lights by RIS,
-/// whose target there follows the glossy lobe towards each light: on Veach's scene (four sphere
-/// lights) efficiency 1.3–1.4× over power-proportional selection. An environment does not count:
-/// it lies in every lobe, and BSDF sampling finds it; with one area light and the environment
-/// (tests/crosscheck/twosided-sides.xml) RIS was 0.62× as efficient as power there, with a point
-/// light and the environment (the point-light scene) 0.3×.
-pub const AUTO_RIS_MIN_GLOSSY_LIGHTS: usize = 2;
+/// Samples per pixel from which `auto` turns adaptive sampling on by itself: its pilot then
+/// takes at most 1/16 of the budget ([`crate::adaptive::split_budget`]).
+pub const AUTO_ADAPTIVE_MIN_SPP: u32 = 32;
 
 /// Nominal sample count given to samplers when only a time budget bounds the render: strata are
 /// laid out for this many samples, and any prefix of them is still unbiased.
@@ -74,6 +63,9 @@ pub struct RenderPlan {
     /// Adaptive sampling: a pilot render decides how many samples each pixel gets (see
     /// [`crate::adaptive`]).
     pub adaptive: bool,
+    /// What `auto` measures on the scene before rendering (see [`crate::auto`]); nothing for
+    /// the other presets. `transport` is then the base the trials switch from.
+    pub trials: Trials,
 }
 
 impl RenderPlan {
@@ -86,6 +78,7 @@ impl RenderPlan {
             budget: RenderBudget::spp(spp),
             sampler_spp: spp,
             adaptive: false,
+            trials: Trials::default(),
         }
     }
 }
@@ -156,41 +149,73 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
     if let (Transport::Path(settings), Some(rr)) = (&mut transport, args.rr) {
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
     }
+    let is_auto = args.integrator == IntegratorPreset::Auto;
+    let mut trials = Trials::default();
     if let Transport::Path(settings) = &mut transport {
-        // `auto` traces caustics from the lights wherever that applies.
-        let auto_traces = args.integrator == IntegratorPreset::Auto;
-        settings.light_tracing = (args.light_tracing || auto_traces)
-            && light_tracing_applies(
-                features,
-                settings.max_depth,
-                !desc.sensor.orthographic,
-                settings.skip_null_vertices,
-            )
-            && !settings.hide_emitters;
-        let auto_reuses = auto_traces && path_reuse_pays(features, settings.max_depth);
-        let block = match args.path_reuse {
-            Some(ReuseFlag::Block(block)) => Some(block),
-            Some(ReuseFlag::Off) => None,
-            None => auto_reuses.then_some(AUTO_REUSE_BLOCK),
-        };
-        settings.path_reuse = block
-            .map(|block| PathReuse { block })
-            .filter(|_| settings.reuse_applies());
+        let tracing_applies = light_tracing_applies(
+            features,
+            settings.max_depth,
+            !desc.sensor.orthographic,
+            settings.skip_null_vertices,
+        ) && !settings.hide_emitters;
+        // `auto` traces caustics from the lights wherever that applies, unless the user pinned
+        // path reuse (the two exclude each other); its pilot may find that switching it off pays.
+        let reuse_pinned = matches!(args.path_reuse, Some(ReuseFlag::Block(_)));
+        settings.light_tracing =
+            (args.light_tracing || (is_auto && !reuse_pinned)) && tracing_applies;
+        settings.path_reuse = match args.path_reuse {
+            Some(ReuseFlag::Block(block)) => Some(PathReuse { block }),
+            Some(ReuseFlag::Off) | None => None,
+        }
+        .filter(|_| settings.reuse_applies());
+        // A saved or resumed render keeps the base: its parts may have different budgets, and
+        // a pilot's choice could differ between them. What the user pinned is not tried.
+        if is_auto && args.state.is_none() && args.resume.is_none() {
+            let many_lights = settings.sample_lights
+                && features.light_count >= 2
+                && settings.direct_samples.is_none();
+            let reusing = PathSettings {
+                path_reuse: Some(PathReuse {
+                    block: auto::REUSE_BLOCK,
+                }),
+                light_tracing: false,
+                ..*settings
+            };
+            trials = Trials {
+                ris: many_lights,
+                no_roulette: args.rr.is_none()
+                    && settings.direct_samples.is_none()
+                    && settings
+                        .russian_roulette
+                        .zip(settings.max_depth)
+                        .is_some_and(|(rr, depth)| depth > rr.start_depth),
+                no_light_tracing: settings.light_tracing && !args.light_tracing,
+                path_reuse: args.path_reuse.is_none()
+                    && !args.light_tracing
+                    && features.has_diffuse_bsdfs
+                    && reusing.reuse_applies(),
+            };
+        }
     }
 
+    let scene_sampler = match desc.sampler.kind {
+        // Mitsuba's default, written into nearly every Mitsuba file: it carries no intent, so
+        // `auto` takes the sampler it measures best (Sobol, whose prefixes stay stratified under
+        // a time budget).
+        SceneSampler::Independent if is_auto => SamplerKind::Sobol,
+        SceneSampler::Independent => SamplerKind::Independent,
+        SceneSampler::Stratified | SceneSampler::Multijitter | SceneSampler::Orthogonal => {
+            SamplerKind::Stratified
+        }
+        // Mitsuba's `ldsampler` is a scrambled (0, 2)-sequence with per-dimension shuffles.
+        SceneSampler::Ldsampler => SamplerKind::Sobol,
+    };
     let sampler = match args.sampler {
         Some(SamplerFlag::Independent) => SamplerKind::Independent,
         Some(SamplerFlag::Stratified) => SamplerKind::Stratified,
         Some(SamplerFlag::BlueNoise) => SamplerKind::BlueNoise,
         Some(SamplerFlag::Sobol) => SamplerKind::Sobol,
-        None => match desc.sampler.kind {
-            SceneSampler::Independent => SamplerKind::Independent,
-            SceneSampler::Stratified | SceneSampler::Multijitter | SceneSampler::Orthogonal => {
-                SamplerKind::Stratified
-            }
-            // Mitsuba's `ldsampler` is a scrambled (0, 2)-sequence with per-dimension shuffles.
-            SceneSampler::Ldsampler => SamplerKind::Sobol,
-        },
+        None => scene_sampler,
     };
     let seed = args.seed.map_or(desc.sampler.seed, fold_seed);
     let budget = match (args.spp, args.time) {
@@ -200,13 +225,27 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             max_seconds: time,
         },
     };
+    // `auto` samples adaptively where the pilot costs at most a sixteenth of the budget; a saved
+    // or resumed render cannot (its samples must not depend on a pilot).
+    let adaptive = match args.adaptive {
+        Some(switch) => switch.is_on(),
+        None => {
+            is_auto
+                && args.state.is_none()
+                && args.resume.is_none()
+                && budget
+                    .max_spp
+                    .is_none_or(|spp| spp >= AUTO_ADAPTIVE_MIN_SPP)
+        }
+    };
     RenderPlan {
         transport,
         sampler,
         seed,
         budget,
         sampler_spp: budget.max_spp.unwrap_or(TIME_BUDGET_NOMINAL_SPP),
-        adaptive: args.adaptive,
+        adaptive,
+        trials,
     }
 }
 
@@ -226,19 +265,14 @@ pub fn plan_from_flags(scene: &RenderScene, flags: &[&str]) -> Result<RenderPlan
     }
 }
 
-/// `auto`: the MIS preset minus what the scene cannot use. No light sampling where every BSDF
-/// is a delta or there are no lights; no MIS where every light is a delta light; uniform choice
-/// (no table) for one light, RIS for many, and for several hittable lights seen in glossy
-/// materials.
+/// `auto`'s base: the MIS preset minus what the scene cannot use. No light sampling where every
+/// BSDF is a delta or there are no lights; no MIS where no light can be hit; uniform choice (no
+/// table) for one light. The techniques whose payoff depends on the scene are measured on it
+/// before the render ([`crate::auto`]).
 pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSettings {
     let sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
-    let glossy_choice =
-        features.has_glossy_bsdfs && features.area_light_count >= AUTO_RIS_MIN_GLOSSY_LIGHTS;
     let light_selection = match features.light_count {
         0 | 1 => LightSelectionMode::Uniform,
-        n if n >= AUTO_RIS_MIN_LIGHTS || glossy_choice => LightSelectionMode::Ris {
-            candidates: RIS_CANDIDATES,
-        },
         _ => LightSelectionMode::Power,
     };
     PathSettings {
@@ -251,21 +285,6 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
         light_selection,
         ..mis
     }
-}
-
-/// Whether `auto` turns path reuse on: where some material is diffuse (else nothing is
-/// shared), in a scene lit by area lights only, closed (no environment) and with paths of at
-/// least 4 vertices. Path reuse shares what second vertices reflect, so it pays where indirect
-/// light holds much of the noise. Measured at equal time (2 s, `--sampler sobol --adaptive`,
-/// 4 × 4 blocks, 2026-12-03): relMSE 2.6× lower on the Cornell box, 2.3× on its small-light
-/// variant, 1.5× on its mesh variant, 7.7× in the furnace, unchanged on Veach's scene; but
-/// 1.2× higher on `manylights` (`max_depth` 3: one indirect bounce), 1.1× with a point light
-/// and 1.2× on `thinlens` (an environment: many first bounces escape and share nothing).
-pub fn path_reuse_pays(features: &SceneFeatures, max_depth: Option<u32>) -> bool {
-    features.has_diffuse_bsdfs
-        && !features.has_delta_lights()
-        && !features.has_environment
-        && max_depth.is_none_or(|depth| depth >= 4)
 }
 
 /// Whether caustics by light tracing can find anything in the scene: a delta BSDF to make
@@ -299,76 +318,48 @@ mod tests {
     use super::*;
 
     /// `lights` lights of which `area` are area lights, plus the environment when `environment`.
-    fn features(lights: usize, area: usize, environment: bool, glossy: bool) -> SceneFeatures {
+    fn features(lights: usize, area: usize, environment: bool) -> SceneFeatures {
         SceneFeatures {
             light_count: lights,
             has_non_delta_bsdfs: true,
             has_delta_bsdfs: false,
             area_light_count: area,
             has_environment: environment,
-            has_glossy_bsdfs: glossy,
+            has_glossy_bsdfs: false,
             has_null_lobes: false,
             has_diffuse_bsdfs: true,
         }
     }
 
-    fn selection(features: &SceneFeatures) -> LightSelectionMode {
+    fn base(features: &SceneFeatures) -> PathSettings {
         let mis = PathSettings {
             sample_lights: true,
             mis: Mis::Power,
             ..PathSettings::default()
         };
-        auto_settings(mis, features).light_selection
+        auto_settings(mis, features)
     }
 
     #[test]
-    fn auto_resamples_lights_for_many_lights_and_for_several_seen_in_glossy_materials() {
-        let ris = LightSelectionMode::Ris {
-            candidates: RIS_CANDIDATES,
-        };
+    fn auto_base_picks_one_light_uniformly_and_several_by_power() {
         assert_eq!(
-            selection(&features(1, 1, false, true)),
+            base(&features(1, 1, false)).light_selection,
             LightSelectionMode::Uniform
         );
-        // Veach's scene: four spheres and the environment on rough metal.
-        assert_eq!(selection(&features(5, 4, true, true)), ris);
+        // Veach's scene: four spheres and the environment. RIS is a trial, not the base.
         assert_eq!(
-            selection(&features(5, 4, true, false)),
+            base(&features(5, 4, true)).light_selection,
             LightSelectionMode::Power
-        );
-        // One sphere light and the environment; a point light and the environment.
-        assert_eq!(
-            selection(&features(2, 1, true, true)),
-            LightSelectionMode::Power
-        );
-        assert_eq!(
-            selection(&features(2, 0, true, true)),
-            LightSelectionMode::Power
-        );
-        assert_eq!(
-            selection(&features(AUTO_RIS_MIN_LIGHTS, 16, false, false)),
-            ris
         );
     }
 
     #[test]
-    fn auto_reuses_paths_in_closed_scenes_lit_by_area_lights_with_deep_paths() {
-        let cbox = features(1, 1, false, false);
-        assert!(path_reuse_pays(&cbox, Some(8)));
-        assert!(path_reuse_pays(&cbox, None));
-        assert!(!path_reuse_pays(&cbox, Some(3)), "one indirect bounce");
-        assert!(
-            !path_reuse_pays(&features(2, 1, true, false), Some(8)),
-            "environment"
-        );
-        assert!(
-            !path_reuse_pays(&features(2, 1, false, false), Some(8)),
-            "point light"
-        );
-        let no_diffuse = SceneFeatures {
-            has_diffuse_bsdfs: false,
-            ..cbox
-        };
-        assert!(!path_reuse_pays(&no_diffuse, Some(8)));
+    fn auto_base_leaves_out_mis_where_no_light_can_be_hit() {
+        let point_light = base(&features(1, 0, false));
+        assert!(point_light.sample_lights);
+        assert_eq!(point_light.mis, Mis::Off);
+        assert_eq!(base(&features(1, 1, false)).mis, Mis::Power);
+        let no_lights = base(&features(0, 0, false));
+        assert!(!no_lights.sample_lights);
     }
 }

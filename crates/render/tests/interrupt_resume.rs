@@ -73,7 +73,11 @@ fn ctrl_c_writes_a_complete_image_of_the_samples_done_and_resume_finishes_it_exa
     resume_args.extend(["--resume", arg(&state)]);
     resume_args.extend(common);
     strata_ok(&resume_args);
+    // A saved render keeps `auto`'s base techniques and samples every pixel alike; so does the
+    // whole render that saves its state.
+    let whole_state = dir.path().join("whole.state");
     let mut whole_args = vec!["render", arg(&scene), "--out", arg(&whole), "--spp", &total];
+    whole_args.extend(["--state", arg(&whole_state)]);
     whole_args.extend(common);
     strata_ok(&whole_args);
     assert_eq!(

@@ -5,7 +5,8 @@ use integrators::reference::ReferenceSettings;
 use integrators::{
     DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
 };
-use render::technique::{AUTO_REUSE_BLOCK, RIS_CANDIDATES, Transport, auto_settings};
+use render::auto::{REUSE_BLOCK, Trials};
+use render::technique::{RIS_CANDIDATES, RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use scene::SceneFeatures;
 
@@ -23,6 +24,8 @@ pub struct Configuration {
     pub sampler: SamplerKind,
     /// Adaptive sampling (a pilot render allocates samples per pixel).
     pub adaptive: bool,
+    /// What `auto` measures before rendering (nothing for the other rungs).
+    pub trials: Trials,
 }
 
 /// What the scene file fixes for every configuration.
@@ -40,8 +43,7 @@ pub struct SceneTransport {
     pub direct_samples: Option<DirectSamples>,
     /// Whether a pass through a null lobe is not a path vertex (Mitsuba's `volpath`).
     pub skip_null_vertices: bool,
-    /// Whether `auto` reuses paths where nothing excludes it
-    /// (`render::technique::path_reuse_pays`).
+    /// Whether path reuse has something to share: a diffuse material.
     pub path_reuse: bool,
 }
 
@@ -68,18 +70,24 @@ impl SceneTransport {
 /// The ladder for a scene with `features`: reference → BSDF sampling only → NEE without MIS →
 /// MIS → (uniform and RIS light selection, with more than one light) → + roulette → +
 /// stratified → + blue noise → + Sobol → + adaptive sampling (Sobol) → + light tracing (where
-/// it applies), and `auto` (`auto_settings` of MIS with roulette, Sobol sampler, adaptive
-/// sampling, light tracing where it applies). Light selection and
+/// it applies) → + path reuse (where a diffuse material gives it something to share), and
+/// `auto`: the plan `strata render` makes without flags (`auto`), whose pilot chooses its
+/// techniques on the scene. Light selection and
 /// the later rungs build on MIS (on NEE where no light can be
 /// hit, on BSDF sampling where none can be sampled). BSDF-only is left out when the scene has delta lights
 /// (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be sampled; MIS
 /// when no light can be hit (it equals NEE there).
-pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Configuration> {
+pub fn ladder(
+    transport: &SceneTransport,
+    features: &SceneFeatures,
+    auto: &RenderPlan,
+) -> Vec<Configuration> {
     let rung = |name: &str, settings: PathSettings, sampler| Configuration {
         name: name.to_string(),
         transport: Transport::Path(settings),
         sampler,
         adaptive: false,
+        trials: Trials::default(),
     };
     let independent = SamplerKind::Independent;
     let mis = transport.mis();
@@ -93,6 +101,7 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
         }),
         sampler: independent,
         adaptive: false,
+        trials: Trials::default(),
     }];
     let no_nee = PathSettings {
         sample_lights: false,
@@ -161,33 +170,23 @@ pub fn ladder(transport: &SceneTransport, features: &SceneFeatures) -> Vec<Confi
             ..rung("+light-tracing", traced, SamplerKind::Sobol)
         });
     }
-    let reuse = Some(PathReuse {
-        block: AUTO_REUSE_BLOCK,
-    });
     let reusing = PathSettings {
-        path_reuse: reuse,
+        path_reuse: Some(PathReuse { block: REUSE_BLOCK }),
         ..roulette
     };
-    if transport.path_reuse && !transport.light_tracing && reusing.reuse_applies() {
+    if transport.path_reuse && reusing.reuse_applies() {
         rungs.push(Configuration {
             adaptive: true,
             ..rung("+path-reuse", reusing, SamplerKind::Sobol)
         });
     }
-    let mut auto = auto_settings(
-        PathSettings {
-            russian_roulette: Some(transport.roulette),
-            light_tracing: transport.light_tracing,
-            ..mis
-        },
-        features,
-    );
-    if transport.path_reuse && auto.reuse_applies() {
-        auto.path_reuse = reuse;
-    }
+    // `auto` as `strata render` runs it without flags: the pilot picks its techniques.
     rungs.push(Configuration {
-        adaptive: true,
-        ..rung("auto", auto, SamplerKind::Sobol)
+        name: "auto".to_string(),
+        transport: auto.transport,
+        sampler: auto.sampler,
+        adaptive: auto.adaptive,
+        trials: auto.trials,
     });
     rungs
 }
@@ -221,13 +220,31 @@ mod tests {
         }
     }
 
+    /// A plan as `auto` makes one: Sobol, adaptive, RIS and path reuse to be tried.
+    fn auto_plan() -> RenderPlan {
+        RenderPlan {
+            adaptive: true,
+            trials: Trials {
+                ris: true,
+                path_reuse: true,
+                ..Trials::default()
+            },
+            ..RenderPlan::fixed_spp(
+                Transport::Path(PathSettings::default()),
+                SamplerKind::Sobol,
+                1,
+                64,
+            )
+        }
+    }
+
     fn names(rungs: &[Configuration]) -> Vec<&str> {
         rungs.iter().map(|c| c.name.as_str()).collect()
     }
 
     #[test]
     fn light_selection_rungs_only_with_several_lights() {
-        let one = ladder(&transport(), &features(1, false));
+        let one = ladder(&transport(), &features(1, false), &auto_plan());
         assert_eq!(
             names(&one),
             [
@@ -243,14 +260,14 @@ mod tests {
                 "auto"
             ]
         );
-        let many = ladder(&transport(), &features(4, false));
+        let many = ladder(&transport(), &features(4, false), &auto_plan());
         assert!(names(&many).contains(&"uniform-lights"));
         assert!(names(&many).contains(&"ris-lights"));
     }
 
     #[test]
     fn point_lights_drop_bsdf_only_and_mis() {
-        let rungs = ladder(&transport(), &features(1, true));
+        let rungs = ladder(&transport(), &features(1, true), &auto_plan());
         let names = names(&rungs);
         assert!(!names.contains(&"bsdf") && !names.contains(&"mis"));
         assert!(names.contains(&"nee"));
@@ -264,8 +281,8 @@ mod tests {
     }
 
     #[test]
-    fn light_tracing_rung_and_auto_only_where_it_applies() {
-        let without = ladder(&transport(), &features(1, false));
+    fn light_tracing_rung_only_where_it_applies() {
+        let without = ladder(&transport(), &features(1, false), &auto_plan());
         assert!(!names(&without).contains(&"+light-tracing"));
         let with = ladder(
             &SceneTransport {
@@ -273,19 +290,13 @@ mod tests {
                 ..transport()
             },
             &features(1, false),
+            &auto_plan(),
         );
         assert!(names(&with).contains(&"+light-tracing"));
-        for rungs in [&without, &with] {
-            let auto = rungs.last().expect("auto is last");
-            let Transport::Path(settings) = auto.transport else {
-                panic!("auto is a path configuration");
-            };
-            assert_eq!(settings.light_tracing, rungs.len() == with.len());
-        }
     }
 
     #[test]
-    fn path_reuse_rung_and_auto_where_it_pays_and_light_tracing_does_not_apply() {
+    fn path_reuse_rung_where_reuse_has_diffuse_surfaces_to_share() {
         let reusing = SceneTransport {
             path_reuse: true,
             ..transport()
@@ -298,19 +309,34 @@ mod tests {
                     light_tracing: true,
                     ..reusing
                 },
+                true,
+            ),
+            (
+                SceneTransport {
+                    max_depth: Some(2),
+                    ..reusing
+                },
                 false,
             ),
         ] {
-            let rungs = ladder(&scene, &features(1, false));
+            let rungs = ladder(&scene, &features(1, false), &auto_plan());
             assert_eq!(
                 names(&rungs).contains(&"+path-reuse"),
                 expected,
                 "{scene:?}"
             );
-            let Transport::Path(auto) = rungs.last().expect("auto is last").transport else {
-                panic!("auto is a path configuration");
-            };
-            assert_eq!(auto.path_reuse.is_some(), expected, "{scene:?}");
         }
+    }
+
+    #[test]
+    fn the_auto_rung_is_the_default_plan_with_its_trials() {
+        let plan = auto_plan();
+        let rungs = ladder(&transport(), &features(4, false), &plan);
+        let auto = rungs.last().expect("auto is last");
+        assert_eq!(auto.name, "auto");
+        assert_eq!(
+            (auto.transport, auto.sampler, auto.adaptive, auto.trials),
+            (plan.transport, plan.sampler, plan.adaptive, plan.trials)
+        );
     }
 }

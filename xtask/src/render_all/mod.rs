@@ -14,7 +14,7 @@ pub use run::render_all;
 
 use integrators::RussianRoulette;
 use ladder::SceneTransport;
-use render::technique::{direct_samples, light_tracing_applies, path_reuse_pays};
+use render::technique::{direct_samples, light_tracing_applies};
 use scene::RenderScene;
 use std::path::{Path, PathBuf};
 
@@ -59,7 +59,7 @@ impl SuiteScene {
                 integrator.skip_null_vertices,
             ),
             skip_null_vertices: integrator.skip_null_vertices,
-            path_reuse: path_reuse_pays(&self.scene.features, max_depth),
+            path_reuse: self.scene.features.has_diffuse_bsdfs,
         }
     }
 }

@@ -5,12 +5,15 @@ use super::error_map::error_map;
 use super::ladder::{Configuration, ladder};
 use super::report::{Measurement, SceneReport, write_report};
 use super::{SuiteScene, parse_scene_list, reference_path, scene_files};
+use render::auto::TechniquePilot;
 use render::driver::{RenderBudget, RenderOptions};
 use render::image::Image;
 use render::metrics::{relmse, rmse};
 use render::progress::Progress;
 use render::session::{film_filter, render_scene};
-use render::technique::{RenderPlan, TIME_BUDGET_NOMINAL_SPP};
+use render::technique::{
+    AUTO_ADAPTIVE_MIN_SPP, RenderPlan, TIME_BUDGET_NOMINAL_SPP, plan_from_flags,
+};
 use std::path::Path;
 
 /// Time budgets in seconds of the full run.
@@ -56,13 +59,19 @@ pub fn render_all(root: &Path, args: &[String]) -> Result<bool, String> {
         reference
             .write_png(&scene_dir.join("stored-reference.png"))
             .map_err(|e| e.to_string())?;
-        let configurations = ladder(&suite.transport(), &suite.scene.features);
+        let auto = plan_from_flags(&suite.scene, &[])?;
+        let configurations = ladder(&suite.transport(), &suite.scene.features, &auto);
         let mut measurements = Vec::new();
+        let mut auto_techniques = Vec::new();
         for (c, configuration) in configurations.iter().enumerate() {
             for (i, &seconds) in budgets.iter().enumerate() {
                 progress.set_message(format!("{} / {}", suite.name, configuration.name));
-                let (measurement, image) =
+                let (measurement, image, choice) =
                     measure(&suite, configuration, &reference, seconds, seed(i))?;
+                if let Some(pilot) = choice.filter(|_| i + 1 == budgets.len()) {
+                    auto_techniques = pilot.choice.settings.technique_names();
+                    auto_techniques.push(format!("({})", pilot.choice.reason()));
+                }
                 if i + 1 == budgets.len() {
                     let name = &configuration.name;
                     image
@@ -96,11 +105,7 @@ pub fn render_all(root: &Path, args: &[String]) -> Result<bool, String> {
         }
         reports.push(SceneReport {
             scene: suite.name.clone(),
-            auto_techniques: configurations
-                .iter()
-                .find(|c| c.name == "auto")
-                .map(|c| c.transport.technique_names())
-                .unwrap_or_default(),
+            auto_techniques,
             configurations: configurations.iter().map(|c| c.name.clone()).collect(),
             measurements,
         });
@@ -124,7 +129,7 @@ fn measure(
     reference: &Image,
     seconds: f64,
     seed: u32,
-) -> Result<(Measurement, Image), String> {
+) -> Result<(Measurement, Image, Option<TechniquePilot>), String> {
     let filter = film_filter(suite.scene.desc.film.filter).map_err(|e| e.to_string())?;
     let render = |budget: RenderBudget, sampler_spp: u32| {
         let plan = RenderPlan {
@@ -133,7 +138,14 @@ fn measure(
             seed,
             budget,
             sampler_spp,
-            adaptive: configuration.adaptive,
+            // `auto` samples adaptively where the budget pays for the pilot, as on the command
+            // line.
+            adaptive: configuration.adaptive
+                && (!configuration.trials.any()
+                    || budget
+                        .max_spp
+                        .is_none_or(|spp| spp >= AUTO_ADAPTIVE_MIN_SPP)),
+            trials: configuration.trials,
         };
         render_scene(&suite.scene, &plan, &filter, &RenderOptions::quiet())
             .map(|(output, _)| output)
@@ -160,5 +172,5 @@ fn measure(
         relmse: relmse(&image, reference).map_err(mismatch)?,
         non_finite: output.non_finite.nan + output.non_finite.inf,
     };
-    Ok((measurement, image))
+    Ok((measurement, image, output.auto))
 }

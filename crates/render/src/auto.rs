@@ -1,0 +1,695 @@
+//! `auto`, the default integrator: the techniques a scene gets are chosen by measuring them on
+//! the scene itself.
+//!
+//! `auto` starts from the MIS preset minus what the scene cannot use (no light sampling without
+//! lights or without a non-delta BSDF, no MIS where no light can be hit, uniform light choice for
+//! one light: [`crate::technique::auto_settings`]). Each technique whose payoff depends on the
+//! scene is then a *trial* ([`Trials`]): RIS light selection against power-proportional
+//! selection (several lights), Russian roulette off against on (paths bounded beyond the
+//! roulette's start), path reuse (diffuse materials), and light tracing off against on.
+//!
+//! Caustics by light tracing are in the base wherever they apply (a delta BSDF, an area light,
+//! a camera that light paths can reach), and the trial is to switch them *off*: a caustic path
+//! found by chance is rare (on the glass Cornell box about one pilot sample in a thousand in the
+//! caustic's pixels), so a short pilot of the path tracer alone mostly misses the variance it
+//! causes and would underrate the technique that removes it. Switching light tracing off must
+//! therefore prove itself, like every trial.
+//!
+//! A
+//! *technique pilot* renders a thumbnail of the image (about [`PILOT_PIXELS`] pixels) with each
+//! candidate: the base, and the base with one trial switched. Each candidate is rendered twice
+//! with independent seeds at [`PILOT_SPP`] samples per pixel, and
+//!
+//! - its relative variance is `V = mean over pixels and channels of (a − b)² / 2 / (m² + ε)`,
+//!   where `a` and `b` are the two renders and `m` the mean of every candidate's renders at the
+//!   pixel (so every candidate is weighed by the same denominator, that of relMSE);
+//!   `(a − b)² / 2` is an unbiased estimate of a pixel's variance whatever the pixels share
+//!   (light tracing splats into many pixels, path reuse correlates the pixels of a block);
+//! - its cost `C` is counted, not timed, so that the choice, and so the image, is the same on any
+//!   machine and thread count: closest-hit rays, occlusion rays, samples and RIS candidate
+//!   evaluations weighted by [`Cost`];
+//! - its efficiency is `1 / (V · C)`: the lecture's figure of merit, error × time.
+//!
+//! A trial is kept when its efficiency beats the base's by more than twice the standard error
+//! of their log ratio (independent units: 4 × 4 pixel blocks, so that path reuse's correlated
+//! blocks count once). Light tracing and path reuse exclude each other: the better is kept. When
+//! two or more trials are kept their combination is measured too, and the best measured
+//! candidate wins. The pilot's samples are not in the image (its seeds differ from the image's),
+//! so the image stays unbiased whatever is chosen; its time counts in the render's.
+//!
+//! A budget too small to pay for the pilot (it would take more than [`MAX_PILOT_SHARE`] of the
+//! samples) keeps the base, and says so.
+
+use crate::image::Image;
+use crate::metrics::RELMSE_EPSILON;
+use integrators::{LightSelectionMode, PathReuse, PathSettings, RayCounters};
+
+/// Pixels of the pilot's thumbnail, about: the image is scaled down by a whole factor until it
+/// has at most this many.
+pub const PILOT_PIXELS: u32 = 64 * 64;
+
+/// The fewest thumbnail pixels a pilot is worth: below, the budget keeps the base settings.
+pub const MIN_PILOT_PIXELS: u32 = 16 * 16;
+
+/// Samples per pixel of each of a candidate's two pilot renders.
+pub const PILOT_SPP: u32 = 4;
+
+/// The pilot may take at most this share of a sample budget (counted in samples at the
+/// image's size); a smaller budget keeps the base settings.
+pub const MAX_PILOT_SHARE: f64 = 0.1;
+
+/// Block edge of path reuse when `auto` tries it (4 × 4 blocks share the most paths).
+pub const REUSE_BLOCK: u32 = 4;
+
+/// Candidates per RIS light choice when `auto` tries it.
+pub const RIS_CANDIDATES: u32 = 4;
+
+/// Edge, in thumbnail pixels, of the blocks whose mean variance terms are the independent
+/// units of the pilot's standard errors (path reuse correlates the pixels of a 4 × 4 block).
+const UNIT_BLOCK: u32 = 4;
+
+/// What a candidate's pilot costs, in units of one occlusion ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cost {
+    /// A closest-hit ray with the shading at its hit.
+    pub closest_ray: f64,
+    /// A camera sample apart from its rays (camera ray set-up, sampler, film).
+    pub sample: f64,
+    /// One RIS candidate: a light chosen, a point sampled on it and its contribution estimated,
+    /// per shadow ray of the path tracer.
+    pub ris_candidate: f64,
+}
+
+/// The costs the pilot counts with, from callgrind's instruction counts of 4-spp one-thread
+/// renders of the 128 × 128 Cornell box and Veach's scene: an occlusion ray took 615 and 536
+/// instructions; a closest-hit ray 828 and 580, plus the shading and sampling at its hit, about
+/// 900 and 1,250 (3.0 and 3.2 occlusion rays in all); a RIS candidate 371 and 403 (0.7); a
+/// camera sample's set-up and film update about 660 (1.1).
+pub const COST: Cost = Cost {
+    closest_ray: 3.0,
+    sample: 1.0,
+    ris_candidate: 0.7,
+};
+
+/// The techniques `auto` measures on the scene before rendering it: each `true` one is tried
+/// against the base settings.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Trials {
+    /// RIS light selection ([`RIS_CANDIDATES`] candidates) instead of power-proportional.
+    pub ris: bool,
+    /// Russian roulette off (only where `max_depth` bounds the paths).
+    pub no_roulette: bool,
+    /// Caustics by light tracing off (it is in the base wherever it applies: see the module
+    /// documentation).
+    pub no_light_tracing: bool,
+    /// Path reuse in [`REUSE_BLOCK`]-pixel blocks (and so light tracing off).
+    pub path_reuse: bool,
+}
+
+impl Trials {
+    /// Whether anything is to be measured.
+    pub fn any(&self) -> bool {
+        self.ris || self.no_roulette || self.no_light_tracing || self.path_reuse
+    }
+
+    /// The trials in their fixed order, each with its label and the settings it changes.
+    fn switches(&self) -> Vec<Switch> {
+        [
+            (self.ris, Switch::Ris),
+            (self.no_roulette, Switch::NoRoulette),
+            (self.no_light_tracing, Switch::NoLightTracing),
+            (self.path_reuse, Switch::PathReuse),
+        ]
+        .into_iter()
+        .filter_map(|(on, switch)| on.then_some(switch))
+        .collect()
+    }
+}
+
+/// One technique switched by a trial.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Switch {
+    Ris,
+    NoRoulette,
+    NoLightTracing,
+    PathReuse,
+}
+
+impl Switch {
+    fn label(self) -> &'static str {
+        match self {
+            Switch::Ris => "+ris",
+            Switch::NoRoulette => "-roulette",
+            Switch::NoLightTracing => "-light-tracing",
+            Switch::PathReuse => "+path-reuse",
+        }
+    }
+
+    fn apply(self, settings: PathSettings) -> PathSettings {
+        match self {
+            Switch::Ris => PathSettings {
+                light_selection: LightSelectionMode::Ris {
+                    candidates: RIS_CANDIDATES,
+                },
+                ..settings
+            },
+            Switch::NoRoulette => PathSettings {
+                russian_roulette: None,
+                ..settings
+            },
+            Switch::NoLightTracing => PathSettings {
+                light_tracing: false,
+                ..settings
+            },
+            Switch::PathReuse => PathSettings {
+                path_reuse: Some(PathReuse { block: REUSE_BLOCK }),
+                light_tracing: false,
+                ..settings
+            },
+        }
+    }
+}
+
+/// What one candidate's pilot produced: its two independent renders (thumbnail images, splats
+/// included) and the rays they traced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PilotRenders {
+    /// The two renders, from independent seeds.
+    pub images: [Image; 2],
+    /// Rays traced by both renders.
+    pub rays: RayCounters,
+    /// Camera samples taken by both renders.
+    pub samples: u64,
+}
+
+/// One measured candidate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measured {
+    /// `base`, or the switched trials joined, e.g. `+ris+path-reuse`.
+    pub label: String,
+    /// Its settings.
+    pub settings: PathSettings,
+    /// Relative variance of one pilot render (mean over pixels and channels).
+    pub variance: f64,
+    /// Relative standard error of `variance`, from independent pixel blocks.
+    pub variance_error: f64,
+    /// The variance terms' means over each block (the independent units), in row order.
+    units: Vec<f64>,
+    /// Cost of one pilot render, in occlusion-ray units ([`Cost`]).
+    pub cost: f64,
+}
+
+impl Measured {
+    /// Efficiency, `1 / (variance × cost)`; infinite for a noiseless candidate.
+    pub fn efficiency(&self) -> f64 {
+        1.0 / (self.variance * self.cost)
+    }
+}
+
+/// What `auto` chose and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AutoChoice {
+    /// The settings the image is rendered with.
+    pub settings: PathSettings,
+    /// Label of the chosen candidate (`base` when nothing was switched).
+    pub label: String,
+    /// Every measured candidate, in the order measured (empty when the pilot was skipped).
+    pub measured: Vec<Measured>,
+    /// Why no pilot ran, when none did.
+    pub skipped: Option<String>,
+    /// Thumbnail size of the pilot, pixels.
+    pub thumbnail: (u32, u32),
+}
+
+impl AutoChoice {
+    /// The base, kept without a pilot for `reason`.
+    pub fn unmeasured(base: PathSettings, reason: String) -> Self {
+        Self {
+            settings: base,
+            label: "base".to_string(),
+            measured: Vec::new(),
+            skipped: Some(reason),
+            thumbnail: (0, 0),
+        }
+    }
+
+    /// One line for logs and stats: each candidate's efficiency relative to the base, and the
+    /// choice.
+    pub fn reason(&self) -> String {
+        if let Some(reason) = &self.skipped {
+            return format!("no pilot ({reason}): base");
+        }
+        let Some(base) = self.measured.first() else {
+            return format!("chose {}", self.label);
+        };
+        let figures: Vec<String> = self
+            .measured
+            .iter()
+            .skip(1)
+            .map(|m| {
+                format!(
+                    "{} {:.2} (variance {:.2}, cost {:.2})",
+                    m.label,
+                    m.efficiency() / base.efficiency(),
+                    m.variance / base.variance,
+                    m.cost / base.cost
+                )
+            })
+            .collect();
+        format!(
+            "pilot {}x{} px, 2x{} spp each; efficiency relative to base (±{:.2}): {}; chose {}",
+            self.thumbnail.0,
+            self.thumbnail.1,
+            PILOT_SPP,
+            base.variance_error,
+            figures.join(", "),
+            self.label
+        )
+    }
+}
+
+/// `auto`'s choice of techniques, made by the technique pilot, with what the pilot cost.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TechniquePilot {
+    /// The choice and the measurements behind it.
+    pub choice: AutoChoice,
+    /// Wall-clock seconds the pilot took.
+    pub seconds: f64,
+    /// Rays the pilot traced.
+    pub rays: RayCounters,
+}
+
+/// Seed of render `replica` (0 or 1) of every candidate of the pilot, for a render seeded with
+/// `seed`: streams apart from the image's and from each other. Every candidate uses the same
+/// two seeds (common random numbers), so that where candidates draw the same numbers their
+/// errors are alike and their ratio is known better than either.
+pub fn pilot_seed(seed: u32, replica: u32) -> u32 {
+    sampling::rng::wang_hash(seed ^ 0x5EED_0A70 ^ (replica << 4))
+}
+
+/// The pilot's thumbnail for a `width × height` image rendered with `trials` at `spp` samples
+/// per pixel (`None`: a time budget): the image divided by the smallest whole factor that leaves
+/// at most [`PILOT_PIXELS`] pixels, and few enough that the pilot's samples (every candidate's
+/// two renders and a combination) stay within [`MAX_PILOT_SHARE`] of the image's. `None` when
+/// that leaves fewer than [`MIN_PILOT_PIXELS`]: the budget cannot pay for a pilot.
+pub fn thumbnail_size(
+    width: u32,
+    height: u32,
+    trials: &Trials,
+    spp: Option<u32>,
+) -> Option<(u32, u32)> {
+    let candidates = 2.0 + trials.switches().len() as f64;
+    let per_pixel = candidates * 2.0 * f64::from(PILOT_SPP);
+    let affordable = spp.map_or(f64::INFINITY, |spp| {
+        MAX_PILOT_SHARE * f64::from(spp) * f64::from(width) * f64::from(height) / per_pixel
+    });
+    let most = affordable.min(f64::from(PILOT_PIXELS));
+    let mut factor = 1;
+    let size = |factor: u32| (width.div_ceil(factor), height.div_ceil(factor));
+    while {
+        let (w, h) = size(factor);
+        f64::from(w) * f64::from(h) > most && w * h > 1
+    } {
+        factor += 1;
+    }
+    let (w, h) = size(factor);
+    (f64::from(w) * f64::from(h) <= most && w * h >= MIN_PILOT_PIXELS).then_some((w, h))
+}
+
+/// Measures the candidates of `trials` on top of `base` with `render` (which renders a
+/// candidate's two pilot images) and returns the best, as the module documentation describes.
+pub fn choose<E>(
+    base: PathSettings,
+    trials: &Trials,
+    thumbnail: (u32, u32),
+    mut render: impl FnMut(&PathSettings) -> Result<PilotRenders, E>,
+) -> Result<AutoChoice, E> {
+    let switches = trials.switches();
+    let mut candidates = vec![("base".to_string(), base)];
+    candidates.extend(
+        switches
+            .iter()
+            .map(|s| (s.label().to_string(), s.apply(base))),
+    );
+    let mut renders = Vec::with_capacity(candidates.len() + 1);
+    for (_, settings) in &candidates {
+        renders.push(render(settings)?);
+    }
+    let means = pooled_means(&renders);
+    let mut measured: Vec<Measured> = candidates
+        .iter()
+        .zip(&renders)
+        .map(|((label, settings), pilot)| measure(label, *settings, pilot, &means, thumbnail))
+        .collect();
+
+    // The trials that beat the base beyond noise; light tracing and path reuse exclude each
+    // other, so only the better of the two stays.
+    let base_measured = measured[0].clone();
+    let mut kept: Vec<(Switch, f64)> = switches
+        .iter()
+        .zip(&measured[1..])
+        .filter(|(_, m)| significantly_better(m, &base_measured))
+        .map(|(&s, m)| (s, m.efficiency()))
+        .collect();
+    let exclusive = |s: Switch| matches!(s, Switch::NoLightTracing | Switch::PathReuse);
+    if kept.iter().filter(|(s, _)| exclusive(*s)).count() > 1 {
+        let best = kept
+            .iter()
+            .filter(|(s, _)| exclusive(*s))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(s, _)| *s);
+        kept.retain(|(s, _)| !exclusive(*s) || Some(*s) == best);
+    }
+    // Candidates that may win: the kept trials (their index in `measured`) and their
+    // combination, measured when there are two or more.
+    let mut eligible: Vec<usize> = kept
+        .iter()
+        .filter_map(|(kept, _)| switches.iter().position(|s| s == kept))
+        .map(|i| i + 1)
+        .collect();
+    if kept.len() >= 2 {
+        let settings = kept.iter().fold(base, |s, (switch, _)| switch.apply(s));
+        let label: String = kept.iter().map(|(s, _)| s.label()).collect();
+        let pilot = render(&settings)?;
+        measured.push(measure(&label, settings, &pilot, &means, thumbnail));
+        eligible.push(measured.len() - 1);
+    }
+    let best = eligible
+        .into_iter()
+        .max_by(|&a, &b| {
+            measured[a]
+                .efficiency()
+                .total_cmp(&measured[b].efficiency())
+        })
+        .unwrap_or(0);
+    Ok(AutoChoice {
+        settings: measured[best].settings,
+        label: measured[best].label.clone(),
+        measured,
+        skipped: None,
+        thumbnail,
+    })
+}
+
+/// Whether `candidate`'s efficiency beats `base`'s by more than twice the standard error of
+/// their log ratio. The error is that of the ratio of the two variances' block means, paired
+/// block by block (the delta method): both were rendered from the same seeds, so their blocks'
+/// errors are correlated, and the covariance narrows the ratio's error.
+fn significantly_better(candidate: &Measured, base: &Measured) -> bool {
+    let ratio = candidate.efficiency() / base.efficiency();
+    if !ratio.is_finite() || ratio == 0.0 {
+        // A noiseless candidate against a noisy base wins; a noisy one against a noiseless base
+        // loses; two noiseless ones tie (the base stays).
+        return candidate.variance == 0.0 && base.variance > 0.0;
+    }
+    ratio.ln() > 2.0 * log_ratio_error(&candidate.units, &base.units)
+}
+
+/// Standard error of `ln(mean(a) / mean(b))` for paired units `a` and `b` (delta method).
+fn log_ratio_error(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len()) as f64;
+    if n < 2.0 {
+        return f64::INFINITY;
+    }
+    let mean = |x: &[f64]| x.iter().sum::<f64>() / n;
+    let (ma, mb) = (mean(a), mean(b));
+    let (mut vaa, mut vbb, mut vab) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        vaa += (x - ma) * (x - ma);
+        vbb += (y - mb) * (y - mb);
+        vab += (x - ma) * (y - mb);
+    }
+    let scale = 1.0 / ((n - 1.0) * n);
+    let variance = scale * (vaa / (ma * ma) + vbb / (mb * mb) - 2.0 * vab / (ma * mb));
+    variance.max(0.0).sqrt()
+}
+
+/// Per pixel and channel, the mean of every render of every candidate.
+fn pooled_means(renders: &[PilotRenders]) -> Vec<[f64; 3]> {
+    let pixels = renders[0].images[0].data.len();
+    let count = (renders.len() * 2) as f64;
+    (0..pixels)
+        .map(|i| {
+            let mut sum = [0.0; 3];
+            for image in renders.iter().flat_map(|r| &r.images) {
+                let value = image.data[i].as_dvec3();
+                sum[0] += value.x;
+                sum[1] += value.y;
+                sum[2] += value.z;
+            }
+            sum.map(|s| s / count)
+        })
+        .collect()
+}
+
+/// The relative variance, its standard error and the cost of one candidate's pilot.
+fn measure(
+    label: &str,
+    settings: PathSettings,
+    pilot: &PilotRenders,
+    means: &[[f64; 3]],
+    (width, height): (u32, u32),
+) -> Measured {
+    let [a, b] = &pilot.images;
+    let term = |i: usize| -> f64 {
+        let (a, b) = (a.data[i].as_dvec3(), b.data[i].as_dvec3());
+        let d = a - b;
+        let m = means[i];
+        (d.x * d.x / (m[0] * m[0] + RELMSE_EPSILON)
+            + d.y * d.y / (m[1] * m[1] + RELMSE_EPSILON)
+            + d.z * d.z / (m[2] * m[2] + RELMSE_EPSILON))
+            / 6.0
+    };
+    // Block means are the independent units.
+    let mut units = Vec::new();
+    for by in (0..height).step_by(UNIT_BLOCK as usize) {
+        for bx in (0..width).step_by(UNIT_BLOCK as usize) {
+            let (mut sum, mut count) = (0.0, 0.0);
+            for y in by..(by + UNIT_BLOCK).min(height) {
+                for x in bx..(bx + UNIT_BLOCK).min(width) {
+                    sum += term((y * width + x) as usize);
+                    count += 1.0;
+                }
+            }
+            units.push(sum / count);
+        }
+    }
+    let n = units.len() as f64;
+    let variance = units.iter().sum::<f64>() / n;
+    let spread = units.iter().map(|u| (u - variance).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
+    let variance_error = if variance > 0.0 {
+        (spread / n).sqrt() / variance
+    } else {
+        0.0
+    };
+    let ris_candidates = match settings.light_selection {
+        LightSelectionMode::Ris { candidates } => f64::from(candidates),
+        _ => 0.0,
+    };
+    let rays = pilot.rays;
+    let cost = (COST.closest_ray * rays.rays as f64
+        + (1.0 + COST.ris_candidate * ris_candidates) * rays.shadow_rays as f64
+        + COST.sample * pilot.samples as f64)
+        / 2.0;
+    Measured {
+        label: label.to_string(),
+        settings,
+        variance,
+        variance_error,
+        cost,
+        units,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+    use integrators::RussianRoulette;
+
+    const SIZE: (u32, u32) = (16, 16);
+
+    fn base() -> PathSettings {
+        PathSettings {
+            max_depth: Some(8),
+            sample_lights: true,
+            russian_roulette: Some(RussianRoulette { start_depth: 5 }),
+            ..PathSettings::default()
+        }
+    }
+
+    /// Two renders whose pixels are 1 ± `spread` (independent per pixel, from `seed`), at cost
+    /// `rays` closest-hit rays.
+    fn renders(spread: f32, rays: u64, seed: u32) -> PilotRenders {
+        let mut state = seed.wrapping_mul(2_654_435_761).max(1);
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            if state & 1 == 0 { 1.0 } else { -1.0 }
+        };
+        let pixels = (SIZE.0 * SIZE.1) as usize;
+        let mut image = || Image {
+            width: SIZE.0,
+            height: SIZE.1,
+            data: (0..pixels)
+                .map(|_| Vec3::splat(1.0 + spread * next()))
+                .collect(),
+        };
+        PilotRenders {
+            images: [image(), image()],
+            rays: RayCounters {
+                rays,
+                shadow_rays: 0,
+            },
+            samples: 0,
+        }
+    }
+
+    #[test]
+    fn a_trial_that_halves_the_variance_at_the_same_cost_is_kept() {
+        let trials = Trials {
+            ris: true,
+            path_reuse: true,
+            ..Trials::default()
+        };
+        let choice = choose(base(), &trials, SIZE, |s| {
+            Ok::<_, ()>(if s.path_reuse.is_some() {
+                renders(0.1 / 2f32.sqrt(), 100, 2)
+            } else {
+                renders(0.1, 100, 1)
+            })
+        })
+        .unwrap();
+        assert_eq!(choice.label, "+path-reuse");
+        assert!(choice.settings.path_reuse.is_some());
+        assert_eq!(choice.settings.light_selection, LightSelectionMode::Power);
+        let gain = choice.measured[2].efficiency() / choice.measured[0].efficiency();
+        assert!((gain - 2.0).abs() < 0.5, "efficiency gain {gain}");
+    }
+
+    #[test]
+    fn a_trial_with_lower_variance_but_higher_cost_is_refused() {
+        // Variance halved for four times the cost: half as efficient.
+        let trials = Trials {
+            path_reuse: true,
+            ..Trials::default()
+        };
+        let choice = choose(base(), &trials, SIZE, |s| {
+            Ok::<_, ()>(if s.path_reuse.is_some() {
+                renders(0.1 / 2f32.sqrt(), 400, 2)
+            } else {
+                renders(0.1, 100, 1)
+            })
+        })
+        .unwrap();
+        assert_eq!(choice.label, "base");
+        assert_eq!(choice.settings, base());
+    }
+
+    #[test]
+    fn noise_alone_rarely_switches_a_technique() {
+        // Same variance and cost: a switch is a false positive of the 2-standard-error rule,
+        // about 2.3% per trial, so about 4.6% of pilots with two trials. Over 100 seeded pilots
+        // 12 or more switches would happen with probability below 1e-3 if the rule were right.
+        let trials = Trials {
+            ris: true,
+            no_roulette: true,
+            ..Trials::default()
+        };
+        let mut switched = Vec::new();
+        for seed in 0..100 {
+            let choice = choose(base(), &trials, SIZE, |s| {
+                let which = u32::from(s.russian_roulette.is_none())
+                    + 2 * u32::from(s.light_selection != LightSelectionMode::Power);
+                Ok::<_, ()>(renders(0.1, 100, seed * 4 + which + 1))
+            })
+            .unwrap();
+            if choice.label != "base" {
+                switched.push(format!("seed {seed}: {}", choice.reason()));
+            }
+        }
+        assert!(
+            switched.len() < 12,
+            "{} switches: {switched:#?}",
+            switched.len()
+        );
+    }
+
+    #[test]
+    fn two_kept_trials_are_measured_together() {
+        let trials = Trials {
+            ris: true,
+            no_roulette: true,
+            ..Trials::default()
+        };
+        let mut calls = 0;
+        let choice = choose(base(), &trials, SIZE, |s| {
+            calls += 1;
+            let better = u32::from(s.russian_roulette.is_none())
+                + u32::from(s.light_selection != LightSelectionMode::Power);
+            Ok::<_, ()>(renders(0.1 / 2f32.powi(better as i32), 100, calls))
+        })
+        .unwrap();
+        assert_eq!(calls, 4, "base, two trials and their combination");
+        assert_eq!(choice.label, "+ris-roulette");
+        assert!(choice.settings.russian_roulette.is_none());
+    }
+
+    #[test]
+    fn light_tracing_and_path_reuse_are_never_chosen_together() {
+        // Light tracing is in the base; both switching it off and reusing paths (which switches
+        // it off) beat it, reuse by more.
+        let traced = PathSettings {
+            light_tracing: true,
+            ..base()
+        };
+        let trials = Trials {
+            no_light_tracing: true,
+            path_reuse: true,
+            ..Trials::default()
+        };
+        let choice = choose(traced, &trials, SIZE, |s| {
+            Ok::<_, ()>(match (s.light_tracing, s.path_reuse.is_some()) {
+                (true, false) => renders(0.1, 100, 1),
+                (false, false) => renders(0.05, 100, 2),
+                (false, true) => renders(0.03, 100, 3),
+                (true, true) => panic!("light tracing with path reuse was rendered"),
+            })
+        })
+        .unwrap();
+        assert_eq!(choice.label, "+path-reuse");
+        assert!(choice.settings.path_reuse.is_some() && !choice.settings.light_tracing);
+        assert_eq!(
+            choice.measured.len(),
+            3,
+            "no combination of exclusive trials"
+        );
+    }
+
+    #[test]
+    fn thumbnails_keep_the_aspect_and_fit_the_pixel_and_sample_budgets() {
+        let one = Trials {
+            ris: true,
+            ..Trials::default()
+        };
+        assert_eq!(thumbnail_size(256, 256, &one, None), Some((64, 64)));
+        assert_eq!(thumbnail_size(40, 30, &one, None), Some((40, 30)));
+        let (w, h) = thumbnail_size(1920, 1080, &one, None).unwrap();
+        assert!(w * h <= PILOT_PIXELS, "{w}x{h}");
+        assert!(w * h > PILOT_PIXELS / 2, "{w}x{h}");
+        assert!((w as f64 / h as f64 - 1920.0 / 1080.0).abs() < 0.05);
+        // 128 x 128 at 64 spp: 3 candidates x 2 renders x 4 spp per thumbnail pixel may take
+        // a tenth of 64 x 16384 samples, 43690 thumbnail pixels: the 4096 cap holds.
+        assert_eq!(thumbnail_size(128, 128, &one, Some(64)), Some((64, 64)));
+        // At 8 spp: 4369 pixels would do, but 64 x 64 is the largest whole division under it.
+        let (w, h) = thumbnail_size(128, 128, &one, Some(8)).unwrap();
+        let pilot = 3 * 2 * PILOT_SPP * w * h;
+        assert!(
+            f64::from(pilot) <= MAX_PILOT_SHARE * 8.0 * 128.0 * 128.0,
+            "{w}x{h}"
+        );
+        // At 1 spp not even 16 x 16 pixels fit.
+        assert_eq!(thumbnail_size(128, 128, &one, Some(1)), None);
+    }
+}
