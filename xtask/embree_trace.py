@@ -9,12 +9,13 @@ DIR holds what the xtask wrote, as .npy files:
     strata_closest_t (N,) f32 (inf: miss), strata_closest_tri (N,) i32 (-1: miss),
     strata_shadow (M,) u8 (1: occluded)                           Strata's answers
 
-For each scene flag (robust: Embree's watertight mode, as Strata's triangle test is; fast: Embree's
-default), the scene is built once (not timed), then, `--runs` times, every ray is traced with
-`EmbreeScene.run` (`rtcIntersect1` / `rtcOccluded1`, one ray at a time, tnear = 0, tfar as
-recorded) on each thread count: one `run` call over all rays on one thread, or the rays in chunks
-of CHUNK handed to that many Python threads (`run` releases the GIL). Only the `run` calls are
-timed. Then, untimed, each ray's answer is compared with Strata's.
+For each scene flag (robust: RTC_SCENE_FLAG_ROBUST, the nearest Embree comes to Strata's
+watertight triangle test; fast: Embree's default flags), the scene is built once (not timed),
+then, `--runs` times, every ray is traced with `EmbreeScene.run` (`rtcIntersect1` /
+`rtcOccluded1`, one ray at a time, tnear = 0, tfar as recorded) on each thread count: one `run`
+call over all rays on one thread, or the rays in chunks of CHUNK handed to that many Python
+threads (`run` releases the GIL). Only the `run` calls are timed. Then, untimed, each ray's
+answer is compared with Strata's.
 
 Prints one line of JSON: the Embree version, and per flag the median seconds per thread count,
 the build time and the agreement counts. Needs `pip install embreex numpy`; the xtask makes its
