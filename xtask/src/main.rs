@@ -11,8 +11,10 @@
 //! - `crosscheck [--spp N] [--integrator PRESET] [SCENE.xml ...]`: Strata (the reference
 //!   integrator unless `--integrator` says otherwise) against Mitsuba 3, block by block (needs
 //!   `pip install mitsuba`; never run in CI).
-//! - `raycast-limit [SCENE] [--spp N] [--threads N] [--runs N]`: render time against the time to
-//!   trace the same rays alone, and the speed-up over one thread.
+//! - `raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] [--no-embree]`: render time against
+//!   the time to trace the same rays alone, the speed-up over one thread, and Strata's rays per
+//!   second against Embree 4's on the same rays (installs `embreex` into a virtual environment
+//!   under `target/`; never run in CI).
 //! - `vs-mitsuba [SCENE ...] [--time S] [--runs N] [--variant V] [--strata-flags F]
 //!   [--mitsuba-ref SPP]`: relMSE of Strata and Mitsuba 3 at equal wall time (never in CI).
 
@@ -26,7 +28,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check [--quick] | \
-     gains | crosscheck [--spp N] [--integrator PRESET] [SCENE.xml ...] | raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] | \
+     gains | crosscheck [--spp N] [--integrator PRESET] [SCENE.xml ...] | raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] [--no-embree] | \
      vs-mitsuba [SCENE ...] [--time S] [--runs N] [--variant V] [--strata-flags F] [--mitsuba-ref SPP]>";
 
 fn main() -> ExitCode {

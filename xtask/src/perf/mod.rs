@@ -1,7 +1,8 @@
 //! Performance measurements: `cargo xtask raycast-limit` (render time against the time to trace
-//! the same rays alone, and thread scaling) and `cargo xtask vs-mitsuba` (error at equal time
+//! the same rays alone, thread scaling, and Strata's ray casting against Embree's) and `cargo xtask vs-mitsuba` (error at equal time
 //! against Mitsuba 3).
 
+mod embree;
 mod mitsuba_server;
 mod raycast_limit;
 mod vs_mitsuba;

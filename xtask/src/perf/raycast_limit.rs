@@ -1,5 +1,6 @@
-//! `cargo xtask raycast-limit [SCENE] [--spp N] [--threads N] [--runs N]`: how close a render
-//! comes to the time it takes to trace its rays alone.
+//! `cargo xtask raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] [--no-embree]`: how
+//! close a render comes to the time it takes to trace its rays alone, and how fast Strata traces
+//! those rays against Embree.
 //!
 //! The scene is rendered once while recording every ray (`auto`, the scene's sampler, seed 1).
 //! Then, `--runs` times in turn: the same render without recording (same seed, so the same rays;
@@ -7,14 +8,21 @@
 //! `Accel::intersect`) and shadow rays (`Accel::occluded`) traced alone, in recorded order, on
 //! the same number of threads, timed. Reported: the medians, their ratio (render / ray casting; 1 would mean shading,
 //! sampling and film cost nothing), and the render's speed-up on `--threads` threads over one.
+//!
+//! Then (unless `--no-embree`) the same rays are traced by Strata and by Embree 4 on the scene's
+//! triangles, on one thread and on `--threads`, and compared ray by ray ([`super::embree`]):
+//! Strata's closest-hit and occlusion rays per second ÷ Embree's, the goal being ≥ 0.8. This
+//! needs `python3` and network access on first use (it installs `embreex` into
+//! `target/embree-venv/`).
 
+use super::embree::{self, median_times};
 use super::{median, pool, positive, scene_path};
+use geometry::Accel;
 use integrators::{RayCounters, RayLog};
 use rayon::prelude::*;
 use render::driver::RenderOptions;
 use render::session::{film_filter, render_scene, render_scene_recording};
 use render::technique::plan_from_flags;
-use scene::RenderScene;
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
@@ -28,12 +36,14 @@ pub fn raycast_limit(root: &Path, args: &[String]) -> Result<bool, String> {
     let mut spp: u32 = 32;
     let mut threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut runs: usize = 5;
+    let mut with_embree = true;
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
         match arg.as_str() {
             "--spp" => spp = positive("--spp", rest.next())?,
             "--threads" => threads = positive("--threads", rest.next())?,
             "--runs" => runs = positive("--runs", rest.next())?,
+            "--no-embree" => with_embree = false,
             other if !other.starts_with("--") => scene_arg = other.to_string(),
             other => return Err(format!("raycast-limit: unknown argument {other}")),
         }
@@ -75,7 +85,7 @@ pub fn raycast_limit(root: &Path, args: &[String]) -> Result<bool, String> {
             ));
         }
         render_times.push(seconds);
-        let (closest, shadow) = tracing.install(|| trace_alone(&scene, &log));
+        let (closest, shadow) = tracing.install(|| trace_alone(scene.world.accel(), &log));
         closest_times.push(closest);
         shadow_times.push(shadow);
     }
@@ -113,13 +123,32 @@ pub fn raycast_limit(root: &Path, args: &[String]) -> Result<bool, String> {
             single / render_seconds
         );
     }
+    if with_embree {
+        let thread_counts = if threads > 1 {
+            vec![1, threads]
+        } else {
+            vec![1]
+        };
+        return embree::compare(
+            root,
+            scene.world.accel().shapes(),
+            &log,
+            &thread_counts,
+            runs,
+            |accel, threads| {
+                let pool = pool(threads)?;
+                Ok(median_times(runs, || {
+                    pool.install(|| trace_alone(accel, &log))
+                }))
+            },
+        );
+    }
     Ok(true)
 }
 
-/// Seconds to trace the recorded closest-hit rays and the recorded shadow rays of `log`, on the
-/// current thread pool.
-fn trace_alone(scene: &RenderScene, log: &RayLog) -> (f64, f64) {
-    let accel = scene.world.accel();
+/// Seconds to trace the recorded closest-hit rays and the recorded shadow rays of `log` through
+/// `accel`, on the current thread pool.
+fn trace_alone(accel: &Accel, log: &RayLog) -> (f64, f64) {
     let start = Instant::now();
     let hits: usize = log
         .closest
