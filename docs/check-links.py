@@ -106,12 +106,15 @@ def main():
             resolved = (
                 os.path.normpath(os.path.join(os.path.dirname(source), path)) if path else source
             )
-            if source.endswith(".md") and resolved.startswith(os.path.join(root, "docs", "src")):
-                # README links into the book's sources: judge the fragment on the built page.
+            in_book_sources = resolved.startswith(os.path.join(root, "docs", "src") + os.sep)
+            if source.endswith(".md") and in_book_sources and path.endswith(".md") and parts.fragment:
+                # A README link into the book's sources: the file must exist, and its fragment
+                # is judged on the built page, whose ids are mdBook's.
+                if not os.path.isfile(resolved):
+                    errors.append(f"{shown}:{line}: {target}: {os.path.relpath(resolved, root)} does not exist")
+                    continue
                 relative = os.path.relpath(resolved, os.path.join(root, "docs", "src"))
-                built = os.path.join(book, os.path.splitext(relative)[0] + ".html")
-                if relative.endswith(".md") and os.path.isfile(resolved):
-                    resolved = os.path.normpath(built)
+                resolved = os.path.normpath(os.path.join(book, relative[: -len(".md")] + ".html"))
             if not os.path.exists(resolved):
                 errors.append(f"{shown}:{line}: {target}: {os.path.relpath(resolved, root)} does not exist")
                 continue
