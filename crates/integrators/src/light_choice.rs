@@ -7,7 +7,6 @@ use glam::{Vec2, Vec3};
 use lights::{Light, LightSample, LightSelector};
 use materials::Bsdf;
 use sampling::reservoir::Reservoir;
-use sampling::{Rng, rng::wang_hash};
 
 /// The lobe weight (sr⁻¹) of the environment in [`selection_target`]: 1/π, with which a white
 /// surface turns the irradiance E of an environment around it into reflected radiance E/π; a
@@ -35,8 +34,8 @@ pub(crate) struct ChosenLight {
 }
 
 /// Picks a light and a point on it as `mode` says, from the shading point of `surface` with
-/// outgoing direction `wo` (local frame). `u_choice` and `u_point` come from the sampler; RIS
-/// derives the randomness for its candidates from them.
+/// outgoing direction `wo` (local frame). `u_choice` (the light choice, and RIS's reservoir
+/// choice) and `u_point` come from the sampler, each from its own dimension.
 #[inline(always)]
 pub(crate) fn choose_light(
     mode: LightSelectionMode,
@@ -44,12 +43,12 @@ pub(crate) fn choose_light(
     lights: &[Light],
     surface: &SurfaceHit<'_>,
     wo: Vec3,
-    u_choice: f32,
+    u_choice: Vec2,
     u_point: Vec2,
 ) -> Option<ChosenLight> {
     match mode {
         LightSelectionMode::Uniform | LightSelectionMode::Power => {
-            let (index, pmf) = selector.select(u_choice);
+            let (index, pmf) = selector.select(u_choice.x);
             let candidate = evaluate(&lights[index], pmf, surface, wo, u_point)?;
             let pdf = pmf * candidate.sample.pdf_solid_angle;
             Some(ChosenLight {
@@ -125,8 +124,10 @@ fn stratum(u: f32, k: u32, count: u32) -> f32 {
 /// RIS over lights: `count` candidate lights from the power-proportional source, one kept by a
 /// weighted reservoir with target p̂ = [`selection_target`] at the shading point, then one point
 /// sampled on it with `u_point`. The candidates are stratified: candidate k uses
-/// `u_choice` shifted into the k-th of M strata of the source's CDF, so together they cover
-/// the lights evenly and follow the sampler's stratification of `u_choice`. Candidate k then
+/// `u_choice.x` shifted into the k-th of M strata of the source's CDF, so together they cover
+/// the lights evenly and follow the sampler's stratification of it; the reservoir decides with
+/// `u_choice.y`, a dimension of its own, rescaled from candidate to candidate
+/// ([`Reservoir::update_reusing`]). Candidate k then
 /// has density p_k = M · pmf on its stratum; with the balance heuristic over the M strata
 /// (generalized RIS) each resampling weight is p̂ / (M · pmf), so the reservoir's
 /// W = Σ w / p̂(y) with w = p̂ / pmf is the usual W = Σ w / (M · p̂(y)) and estimates
@@ -140,17 +141,17 @@ fn resample(
     lights: &[Light],
     surface: &SurfaceHit<'_>,
     wo: Vec3,
-    u_choice: f32,
+    u_choice: Vec2,
     u_point: Vec2,
 ) -> Option<ChosenLight> {
-    let mut rng = Rng::new(wang_hash(u_choice.to_bits()));
+    let mut u_reservoir = u_choice.y;
     let mut reservoir = Reservoir::new();
     let count = count.max(1);
     let glossy = surface.bsdf.is_glossy();
     for k in 0..count {
-        let (index, pmf) = source.select(stratum(u_choice, k, count));
+        let (index, pmf) = source.select(stratum(u_choice.x, k, count));
         let target = selection_target(&lights[index], surface, wo, glossy);
-        reservoir.update((index, target), target / pmf, rng.next_f32());
+        reservoir.update_reusing((index, target), target / pmf, &mut u_reservoir);
     }
     let &(index, target) = reservoir.selected()?;
     let weight = reservoir.contribution_weight(target);

@@ -7,7 +7,8 @@
 //! Sampler dimensions per vertex, in this order and only for the techniques switched on and what
 //! the scene needs (so a configuration consumes a fixed, documented sequence for a scene, the
 //! same at every vertex whatever surface it is on): light choice (1D, with next event
-//! estimation when the scene has more than one light) and light point (2D, with next event
+//! estimation when the scene has more than one light), RIS's reservoir choice (1D, with RIS
+//! light selection when the scene has more than one light) and light point (2D, with next event
 //! estimation); BSDF lobe (1D, when some material chooses between lobes: a dielectric) and BSDF
 //! direction (2D) always; roulette (1D, with Russian roulette from its start depth on). With
 //! [`DirectSamples`] (Mitsuba's `direct` integrator) the first vertex draws the light numbers once
@@ -50,6 +51,9 @@ pub struct PathIntegrator {
     selector: Option<LightSelector>,
     /// Whether light sampling draws a number to choose among more than one light.
     draws_light_choice: bool,
+    /// Whether a light sample draws the number its RIS reservoir chooses with (RIS with more
+    /// than one light).
+    draws_reservoir_choice: bool,
     /// Whether some material draws a number to choose its lobe.
     draws_lobe_choice: bool,
 }
@@ -102,6 +106,8 @@ impl PathIntegrator {
             settings,
             selector: LightSelector::new(world.lights(), world.light_weights(), selection),
             draws_light_choice: world.lights().len() > 1,
+            draws_reservoir_choice: world.lights().len() > 1
+                && matches!(settings.light_selection, LightSelectionMode::Ris { .. }),
             draws_lobe_choice: world.has_lobe_choice(),
         }
     }
@@ -118,8 +124,8 @@ impl PathIntegrator {
     /// dimensions without being a vertex.
     pub fn sampler_dimensions(&self, vertices: u32) -> u32 {
         let settings = &self.settings;
-        let per_light_sample =
-            u32::from(settings.sample_lights) * (1 + u32::from(self.draws_light_choice));
+        let per_light_sample = u32::from(settings.sample_lights)
+            * (1 + u32::from(self.draws_light_choice) + u32::from(self.draws_reservoir_choice));
         let per_bsdf_sample = u32::from(self.draws_lobe_choice) + 1;
         if let Some(DirectSamples { light, bsdf }) = settings.direct_samples {
             return if vertices == 0 {
@@ -348,6 +354,15 @@ impl PathIntegrator {
         }
     }
 
+    /// The numbers a light sample chooses its light with: the light choice, and RIS's reservoir
+    /// choice (0 when not drawn).
+    #[inline(always)]
+    fn light_numbers(&self, sampler: &mut impl Sampler) -> Vec2 {
+        let choice = next_1d_if(sampler, self.draws_light_choice);
+        let reservoir = next_1d_if(sampler, self.draws_reservoir_choice);
+        Vec2::new(choice, reservoir)
+    }
+
     /// Next event estimation at `surface` (drawing its numbers at every vertex, as the walk's
     /// light sample): the light it reflects towards `wo` if the shadow ray is not blocked;
     /// `None` at a delta surface or where the sample carries nothing.
@@ -360,7 +375,7 @@ impl PathIntegrator {
         wo: Vec3,
         sampler: &mut impl Sampler,
     ) -> Option<ShadowedLight> {
-        let u_choice = next_1d_if(sampler, self.draws_light_choice);
+        let u_choice = self.light_numbers(sampler);
         let u_point = sampler.next_2d();
         if surface.bsdf.is_delta() {
             return None;
@@ -390,7 +405,7 @@ impl PathIntegrator {
         let mut slot = BsdfSlot::default();
         if self.settings.sample_lights {
             for _ in 0..samples.light {
-                let u_choice = next_1d_if(sampler, self.draws_light_choice);
+                let u_choice = self.light_numbers(sampler);
                 let u_point = sampler.next_2d();
                 if !surface.bsdf.is_delta()
                     && let Some(light) =
@@ -492,7 +507,7 @@ impl PathIntegrator {
         surface: &SurfaceHit<'_>,
         point: &SpawnPoint,
         wo: Vec3,
-        u_choice: f32,
+        u_choice: Vec2,
         u_point: Vec2,
         counts: StrategyCounts,
     ) -> Option<ShadowedLight> {

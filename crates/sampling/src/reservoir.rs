@@ -59,6 +59,34 @@ impl<T> Reservoir<T> {
         }
     }
 
+    /// [`Reservoir::update`] with one uniform number for the whole stream: `u` decides this
+    /// candidate and is then rescaled to a fresh uniform number for the next one (given this
+    /// decision, `u` was uniform on the part of [0, 1) that led to it; that part is stretched back
+    /// to [0, 1)). So a reservoir fed from one sampler dimension selects each candidate with
+    /// probability w / Σ w, as with a uniform number per candidate.
+    #[inline]
+    pub fn update_reusing(&mut self, candidate: T, weight: f32, u: &mut f32) -> bool {
+        self.count = self.count.saturating_add(1);
+        if !(weight > 0.0 && weight.is_finite()) {
+            return false;
+        }
+        self.weight_sum += weight;
+        let p = weight / self.weight_sum;
+        let selected = *u < p;
+        *u = if selected {
+            *u / p
+        } else if p < 1.0 {
+            (*u - p) / (1.0 - p)
+        } else {
+            *u
+        };
+        *u = u.clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+        if selected {
+            self.selected = Some(candidate);
+        }
+        selected
+    }
+
     /// The selected candidate y, or `None` if no candidate had a positive weight.
     #[inline]
     pub fn selected(&self) -> Option<&T> {

@@ -1,7 +1,8 @@
 //! Weighted reservoir sampling: selection probability ∝ weight, bad weights ignored, and RIS estimates
 //! with the unbiased contribution weight are unbiased.
 //!
-//! Chi-square test: α = 0.01 (one test in this file), fixed seed; the mean test uses 4 standard errors.
+//! Chi-square tests: α = 0.01 each (two in this file), fixed seeds; the mean test uses 4 standard
+//! errors. The one-number reservoir is also checked on an even grid of numbers, exactly.
 
 use sampling::Reservoir;
 use sampling::chi2::{Chi2Config, chi2_discrete};
@@ -36,6 +37,71 @@ fn selects_each_candidate_with_probability_proportional_to_its_weight() {
         },
     );
     assert!(outcome.passed, "{outcome}");
+}
+
+#[test]
+fn one_rescaled_number_selects_in_proportion_to_weight() {
+    let weights = [1.0_f32, 0.0, 3.0, 0.5, 5.0, 2.5];
+    let total: f64 = weights.iter().map(|&w| f64::from(w)).sum();
+    let select = |mut u: f32| {
+        let mut r = Reservoir::new();
+        for (i, &w) in weights.iter().enumerate() {
+            r.update_reusing(i, w, &mut u);
+            assert!((0.0..1.0).contains(&u), "u left [0, 1): {u}");
+        }
+        r.into_selected()
+    };
+    let outcome = chi2_discrete(
+        weights.len(),
+        |rng| select(rng.next_f32()),
+        |i| f64::from(weights[i]) / total,
+        &Chi2Config {
+            seed: 5,
+            sample_count: 300_000,
+            ..Chi2Config::default()
+        },
+    );
+    assert!(outcome.passed, "{outcome}");
+    // On an even grid of u each candidate takes a share of the grid within rounding of its
+    // probability: the selection is a partition of [0, 1), not merely right on average.
+    let grid = 1 << 16;
+    let mut counts = [0u32; 6];
+    for k in 0..grid {
+        let u = (k as f32 + 0.5) / grid as f32;
+        counts[select(u).expect("a positive weight")] += 1;
+    }
+    for (i, &count) in counts.iter().enumerate() {
+        let share = f64::from(count) / f64::from(grid);
+        let expected = f64::from(weights[i]) / total;
+        assert!(
+            (share - expected).abs() < 1e-3,
+            "candidate {i}: {share} vs {expected}"
+        );
+    }
+}
+
+#[test]
+fn one_rescaled_number_fails_the_grid_check_if_not_rescaled() {
+    // The power of the grid check above: reusing u unchanged for every candidate (the mistake
+    // the rescaling avoids) correlates the decisions and misses the probabilities.
+    let weights = [1.0_f32, 3.0, 5.0];
+    let total: f64 = weights.iter().map(|&w| f64::from(w)).sum();
+    let grid = 1 << 12;
+    let mut counts = [0u32; 3];
+    for k in 0..grid {
+        let u = (k as f32 + 0.5) / grid as f32;
+        let mut r = Reservoir::new();
+        for (i, &w) in weights.iter().enumerate() {
+            r.update(i, w, u);
+        }
+        counts[r.into_selected().unwrap()] += 1;
+    }
+    let worst = counts
+        .iter()
+        .zip(weights)
+        .map(|(&c, w)| (f64::from(c) / f64::from(grid) - f64::from(w) / total).abs())
+        .fold(0.0, f64::max);
+    assert!(worst > 0.05, "a reused number looked fine: {counts:?}");
 }
 
 #[test]
