@@ -30,9 +30,10 @@
 //! - a file without the record (not written by `strata render` or `strata merge`);
 //! - a file given twice, or two inputs that hold the same sample index of the same seed
 //!   (overlapping ranges: a task rendered twice would count its samples twice);
-//! - inputs of different scenes (fingerprints), settings (which include the sample count the
-//!   sampler's pattern is laid out for, so `--spp 8` and `--spp 16` renders do not merge) or
-//!   image sizes.
+//! - inputs of different scenes (fingerprints), settings or image sizes. The settings include
+//!   the sample count the sampler's pattern is laid out for where the sampler's numbers depend
+//!   on it (stratified and blue noise: `--spp 8` and `--spp 16` renders do not merge; they are
+//!   different patterns, and with one seed their samples would be correlated).
 //!
 //! Renders with different seeds of the same scene and settings are independent renders of the
 //! same image, and are merged: the result pools all their samples (each pixel the mean of all of

@@ -221,10 +221,20 @@ fn merge_refuses_what_does_not_belong_together_naming_the_files() {
         &merge(&[&a, &deeper], &out),
         &["deeper.exr", "different settings"],
     );
-    // A 16-sample pattern is another render than an 8-sample one.
-    let wider = piece("wider.exr", &cbox, &["--samples", "4..8", "--spp", "16"]);
+    // A stratified 16-sample pattern is another render than an 8-sample one.
+    let stratified = ["--sampler", "stratified"];
+    let narrow = piece(
+        "narrow.exr",
+        &cbox,
+        &[&["--samples", "0..4"][..], &stratified].concat(),
+    );
+    let wider = piece(
+        "wider.exr",
+        &cbox,
+        &[&["--samples", "4..8", "--spp", "16"][..], &stratified].concat(),
+    );
     assert_refused(
-        &merge(&[&a, &wider], &out),
+        &merge(&[&narrow, &wider], &out),
         &["wider.exr", "different settings"],
     );
     let larger = path("larger.exr");
@@ -374,43 +384,49 @@ fn an_edited_mesh_include_or_texture_is_another_scene() {
     );
 }
 
-/// Two renders with seeds 1 and 2 (4 spp each) merge into the pool of their samples: the header
-/// records 8 spp, and each pixel is the mean of the two images up to `f32` rounding. A render
-/// laid out for another sample count (`--spp 5`) is another render and is refused.
+/// Two independent-sampler renders with seeds 1 (4 spp) and 2 (12 spp) merge into the pool of
+/// their samples: the header records 16 spp, and each pixel is (4 a + 12 b) / 16 up to `f32`
+/// rounding (the Cornell box has no non-finite samples, so every pixel has all its samples).
+/// Stratified renders laid out for 4 and 5 samples are different patterns and are refused.
 #[test]
 fn renders_with_different_seeds_pool_their_samples() {
     let dir = tempfile::tempdir().unwrap();
     let path = |name: &str| dir.path().join(name);
     let scene = suite_scene("cbox.xml");
-    let render = |name: &str, seed: &str, spp: &str| {
+    let render = |name: &str, seed: &str, spp: &str, sampler: &str| {
         let out = path(name);
-        render_small(
-            &scene,
-            &out,
-            &["--seed", seed, "--spp", spp, "--integrator", "mis"],
-        );
+        let flags = [
+            "--seed",
+            seed,
+            "--spp",
+            spp,
+            "--integrator",
+            "mis",
+            "--sampler",
+            sampler,
+        ];
+        render_small(&scene, &out, &flags);
         out
     };
-    let (a, b, m) = (
-        render("a.exr", "1", "4"),
-        render("b.exr", "2", "4"),
-        path("m.exr"),
-    );
-    assert!(merge(&[&a, &b], &m).status.success());
+    let a = render("a.exr", "1", "4", "independent");
+    let b = render("b.exr", "2", "12", "independent");
+    let m = path("m.exr");
+    assert!(merge(&[&b, &a], &m).status.success());
     let ((ia, _), (ib, _), (im, spp)) = (read_exr(&a), read_exr(&b), read_exr(&m));
-    assert_eq!(spp, Some(8), "the merged header holds the total");
+    assert_eq!(spp, Some(16), "the merged header holds the total");
     for ((pa, pb), pm) in ia.data.iter().zip(&ib.data).zip(&im.data) {
-        let expected = (pa.as_dvec3() + pb.as_dvec3()) / 2.0;
+        let expected = (4.0 * pa.as_dvec3() + 12.0 * pb.as_dvec3()) / 16.0;
         let error = (pm.as_dvec3() - expected).abs();
         let bound = expected.abs() * 2e-7 + DVec3::splat(1e-12);
         assert!(
             error.cmple(bound).all(),
-            "{pm} is not the mean of {pa} and {pb}"
+            "{pm} is not (4 · {pa} + 12 · {pb}) / 16"
         );
     }
-    let five = render("five.exr", "3", "5");
+    let four = render("four.exr", "1", "4", "stratified");
+    let five = render("five.exr", "3", "5", "stratified");
     assert_refused(
-        &merge(&[&a, &five], &m),
+        &merge(&[&four, &five], &m),
         &["five.exr", "different settings"],
     );
 }
