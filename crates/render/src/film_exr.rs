@@ -9,8 +9,8 @@
 //! - `strata.count` (uint): per pixel, the samples in its sums (finite samples only).
 //! - `strata.sum.R0` … `strata.sum.R3`, and the same for `G` and `B` (uint): per pixel and
 //!   channel, the exact sum of its samples ([`ExactSum`], an `i128` in fixed point with
-//!   [`EXACT_FRACTION_BITS`] fractional bits), split into four 32-bit limbs, `0` the least
-//!   significant (two's complement).
+//!   [`crate::film::EXACT_FRACTION_BITS`] fractional bits), split into four 32-bit limbs, `0`
+//!   the least significant (two's complement).
 //! - `strata.splat.R0` … `strata.splat.B3` (uint), only when light paths were traced: the exact
 //!   sums of the light paths' splats, in the same form.
 //!

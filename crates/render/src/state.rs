@@ -5,8 +5,9 @@
 //! sums, row-major, top row first: `sum` r, g, b as little-endian `i128` fixed point
 //! ([`crate::film::ExactSum`]), `sum_sq` r, g, b as little-endian `f64`, then `count` as a
 //! little-endian `u32`, then the light paths' splat sums r, g, b and their squares' as
-//! little-endian `i128` fixed point ([`PIXEL_BYTES`] bytes per pixel). Resuming adds new samples and splats to exactly these sums, so a render
-//! stopped and resumed any number of times gives the same bits as one uninterrupted render.
+//! little-endian `i128` fixed point ([`PIXEL_BYTES`] bytes per pixel). Resuming adds new
+//! samples and splats to exactly these sums, so a render stopped and resumed any number of times
+//! gives the same bits as one uninterrupted render.
 
 use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
