@@ -5,7 +5,7 @@
 //!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise|sobol]
 //!               [--rr on|off] [--adaptive [on|off]] [--light-tracing] [--path-reuse [off|2|4]] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
 //!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
-//!               [-D NAME=VALUE ...]
+//!               [--samples START..END] [-D NAME=VALUE ...]
 //! strata diff A.exr B.exr
 //! strata merge A.exr B.exr … --out OUT.exr [--png OUT.png]
 //! ```
@@ -36,9 +36,9 @@ pub enum Command {
     Render(RenderArgs),
     /// Compare two EXR images; print one JSON line {"rmse", "relmse", "mean_a", "mean_b"}.
     Diff(DiffArgs),
-    /// Merge renders of one scene made with different --seed values into the image of all their
-    /// samples: each pixel is the inputs' values weighted by the samples per pixel recorded in
-    /// their EXR headers (the "spp" attribute), and the output records the total.
+    /// Add up renders of disjoint samples of one render (--samples pieces, or renders with
+    /// different --seed values) into the image of all their samples, exactly; refuse inputs of
+    /// different scenes or settings, and samples given twice.
     Merge(MergeArgs),
 }
 
@@ -176,15 +176,24 @@ pub struct RenderArgs {
     /// error.
     #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
     pub defines: Vec<(String, String)>,
+    /// Render only the sample indices START..END (END excluded) of the render that --spp N
+    /// makes (N is --spp, or END without it): a piece of one render split over processes or
+    /// machines, which `strata merge` adds up into that render's very image. Not with --time,
+    /// --adaptive, --state or --resume.
+    #[arg(long, value_name = "START..END", value_parser = crate::shard::parse_sample_range,
+          conflicts_with_all = ["time", "adaptive", "state", "resume"])]
+    pub samples: Option<std::ops::Range<u32>>,
 }
 
 /// `strata merge`.
 #[derive(Debug, Args, PartialEq)]
 pub struct MergeArgs {
-    /// The EXR images to merge, as written by `strata render` (with the "spp" header attribute).
+    /// The EXR images to merge, as written by `strata render` or `strata merge` (with the sums
+    /// and the "strata" header they record).
     #[arg(required = true, num_args = 1.., value_name = "IN.exr")]
     pub inputs: Vec<PathBuf>,
-    /// The merged image (linear RGB float32 OpenEXR, with the total "spp").
+    /// The merged image (linear RGB float32 OpenEXR, with the sums and the union of the sample
+    /// ranges, so it can be merged again).
     #[arg(long, value_name = "OUT.exr")]
     pub out: PathBuf,
     /// Also write an 8-bit sRGB PNG preview.
@@ -466,6 +475,27 @@ mod tests {
                 b: "b.exr".into()
             })
         );
+    }
+
+    #[test]
+    fn samples_take_a_range_and_exclude_time_adaptive_and_states() {
+        let base = ["render", "s.xml", "--out", "o.exr", "--samples"];
+        let samples = |range: &str| render_args(&[&base[..], &[range]].concat()).samples;
+        assert_eq!(samples("4..12"), Some(4..12));
+        assert_eq!(render_args(&base[..4]).samples, None);
+        for extra in [
+            &["--time", "1"][..],
+            &["--adaptive"],
+            &["--state", "a.state"],
+            &["--resume", "a.state"],
+        ] {
+            let line = [&base[..], &["0..4"], extra].concat();
+            let error = parse(&line).expect_err(&format!("{line:?} must not parse"));
+            assert_eq!(error.exit_code(), 2, "{line:?}: {error}");
+            assert!(error.to_string().contains("--samples"), "{error}");
+        }
+        let error = parse(&[&base[..], &["4..4"]].concat()).unwrap_err();
+        assert_eq!(error.exit_code(), 2);
     }
 
     #[test]

@@ -5,6 +5,7 @@ use std::io::Write;
 
 use crate::cli::Command;
 use crate::diff::DiffReport;
+use crate::film_exr::write_film_exr;
 use crate::merge::merge_files;
 use crate::stop::{INTERRUPTED_EXIT_STATUS, StopSignal};
 
@@ -57,14 +58,10 @@ pub fn run(command: &Command, out: &mut dyn Write, stop: &StopSignal) -> Result<
         }
         Command::Render(args) => crate::render_command::run(args, stop),
         Command::Merge(args) => {
-            let merged = merge_files(&args.inputs)?;
-            merged
-                .image
-                .write_exr_with_spp(&args.out, merged.spp)
-                .map_err(|e| CommandError::Failed(e.to_string()))?;
+            let (film, record) = merge_files(&args.inputs)?;
+            write_film_exr(&args.out, &film, &record).map_err(CommandError::Failed)?;
             if let Some(png) = &args.png {
-                merged
-                    .image
+                film.to_image()
                     .write_png(png)
                     .map_err(|e| CommandError::Failed(e.to_string()))?;
             }

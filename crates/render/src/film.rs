@@ -1,8 +1,13 @@
 //! The film: per-pixel sums of radiance samples, from which the mean image and the variance of
 //! each pixel's mean are computed.
 //!
-//! Sums are kept in `f64` so that long renders lose no precision and the sum of squares can be
-//! turned into a variance without catastrophic cancellation.
+//! The sums that make the image (of the samples, and of the light paths' splats) are kept
+//! exactly, in fixed point ([`ExactSum`]), so that they do not depend on the order of their
+//! terms: the samples of a pixel may be summed in one run, or in pieces (disjoint sample ranges
+//! rendered by different processes, `strata render --samples`) whose sums are added later
+//! (`strata merge`), and the image has the same bits either way. The sums of squares, which only
+//! feed variance estimates, are kept in `f64` so that the variance is computed without
+//! catastrophic cancellation; they depend on the order of their terms in the last bits.
 
 use glam::{DVec3, UVec2, Vec3};
 
@@ -12,8 +17,9 @@ use crate::metrics::SizeMismatch;
 /// The running sums of one pixel's samples (linear RGB radiance).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PixelSum {
-    /// Sum of the sample values.
-    pub sum: DVec3,
+    /// Sum of the sample values, exact (each sample rounded once to the fixed point's step, see
+    /// [`ExactSum`]).
+    pub sum: ExactSum,
     /// Sum of the squared sample values, per channel.
     pub sum_sq: DVec3,
     /// Number of samples added.
@@ -24,14 +30,14 @@ impl PixelSum {
     /// Adds one sample value.
     pub fn add(&mut self, value: Vec3) {
         let v = value.as_dvec3();
-        self.sum += v;
+        self.sum.add(v);
         self.sum_sq += v * v;
         self.count += 1;
     }
 
     /// Adds another pixel's sums to this one.
     pub fn merge(&mut self, other: &PixelSum) {
-        self.sum += other.sum;
+        self.sum.merge(&other.sum);
         self.sum_sq += other.sum_sq;
         self.count += other.count;
     }
@@ -41,7 +47,7 @@ impl PixelSum {
         if self.count == 0 {
             Vec3::ZERO
         } else {
-            (self.sum / f64::from(self.count)).as_vec3()
+            (self.sum.value() / f64::from(self.count)).as_vec3()
         }
     }
 
@@ -52,7 +58,8 @@ impl PixelSum {
             return DVec3::ZERO;
         }
         let n = f64::from(self.count);
-        ((self.sum_sq - self.sum * self.sum / n) / (n - 1.0)).max(DVec3::ZERO)
+        let sum = self.sum.value();
+        ((self.sum_sq - sum * sum / n) / (n - 1.0)).max(DVec3::ZERO)
     }
 
     /// The estimated variance of the mean, `s² / n` ([`Self::sample_variance`] over the sample
@@ -66,27 +73,44 @@ impl PixelSum {
 }
 
 /// Fractional bits of [`ExactSum`]'s fixed point: a resolution of 2⁻⁴⁸ ≈ 3.6e-15 and room for
-/// sums up to 2⁷⁹ ≈ 6e23. Splats below half the resolution (and, in the sums of squares, splats
-/// below about 4e-8) count as zero, so a scene lit at radiances of order 1e-12 would lose its
-/// caustics' precision; scenes in physical units are many orders of magnitude away from either
-/// end.
-const EXACT_FRACTION_BITS: i32 = 48;
+/// sums up to 2⁷⁹ ≈ 6e23. Sample values (`f32`) of magnitude 2⁻²⁵ ≈ 3e-8 and above are added
+/// without any rounding; smaller ones are rounded to the step, which moves a pixel's mean by at
+/// most half a step, below `f32` precision for means above about 3e-8. Splats below half the
+/// resolution (and, in the splats' sums of squares, splats below about 4e-8) count as zero, so a
+/// scene lit at radiances of order 1e-12 would lose its precision; scenes in physical units are
+/// many orders of magnitude away from either end.
+pub const EXACT_FRACTION_BITS: i32 = 48;
 
-/// A per-channel sum kept exactly, in fixed point with 48 fractional bits (`EXACT_FRACTION_BITS`),
+/// A per-channel sum kept exactly, in fixed point with [`EXACT_FRACTION_BITS`] fractional bits,
 /// so that it does not depend on the order of its terms: light paths' splats reach a pixel in an
-/// order that depends on how the samples were split into passes, and a resumed render (whose
-/// passes split differently) must give the same bits as an uninterrupted one. Each term is
-/// rounded to the nearest step once; sums saturate instead of wrapping.
+/// order that depends on how the samples were split into passes, a resumed render (whose passes
+/// split differently) must give the same bits as an uninterrupted one, and the sums of disjoint
+/// sample ranges rendered apart must add up to those of one render of all of them. Each term is
+/// rounded to the nearest step once (ties to even); sums saturate instead of wrapping.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ExactSum(pub [i128; 3]);
+
+/// 1.5 · 2⁵²: adding and subtracting it rounds an `f64` of magnitude below 2⁵¹ to an integer,
+/// ties to even, in two additions (where `f64::round` is a library call on baseline x86-64).
+const ROUNDING_BIAS: f64 = 6_755_399_441_055_744.0;
+
+/// `x` rounded to the nearest integer, ties to even, saturated to the `i128` range.
+fn round_to_i128(x: f64) -> i128 {
+    if x.abs() < 2f64.powi(51) {
+        ((x + ROUNDING_BIAS) - ROUNDING_BIAS) as i64 as i128
+    } else {
+        // `as` saturates; from 2⁵² up every f64 is an integer.
+        x.round_ties_even() as i128
+    }
+}
 
 impl ExactSum {
     /// Adds `value`, rounded to the nearest multiple of the resolution.
     pub fn add(&mut self, value: DVec3) {
         let scale = 2f64.powi(EXACT_FRACTION_BITS);
         for (sum, v) in self.0.iter_mut().zip(value.to_array()) {
-            // `as` saturates; non-finite values never reach the film.
-            *sum = sum.saturating_add((v * scale).round() as i128);
+            // Non-finite values never reach the film.
+            *sum = sum.saturating_add(round_to_i128(v * scale));
         }
     }
 
@@ -394,6 +418,57 @@ mod tests {
         huge.add(DVec3::splat(1e30));
         huge.add(DVec3::splat(1e30));
         assert!(huge.value().min_element() > 0.0);
+    }
+
+    #[test]
+    fn rounding_to_the_step_is_to_nearest_with_ties_to_even() {
+        for (x, rounded) in [
+            (2.5, 2),
+            (3.5, 4),
+            (-2.5, -2),
+            (-2.6, -3),
+            (0.49999999999999994, 0),
+            (2f64.powi(51) + 1.5, (1i128 << 51) + 2),
+            (-(2f64.powi(60)), -(1i128 << 60)),
+            (1e300, i128::MAX),
+            (-1e300, i128::MIN),
+        ] {
+            assert_eq!(round_to_i128(x), rounded, "{x}");
+        }
+    }
+
+    #[test]
+    fn pieces_of_a_pixel_sample_sequence_add_up_to_the_same_image() {
+        // Values whose f64 running sum depends on where it is split: fireflies of 3e7 (an f64
+        // step of 2⁻²⁷ there) among values with bits down to 2⁻³⁰.
+        let values: Vec<Vec3> = (0..64)
+            .map(|k| {
+                let small = 1.0 / (k as f32 + 3.0);
+                let large = if k % 5 == 0 { 3e7 } else { small };
+                Vec3::new(large, small, -large)
+            })
+            .collect();
+        let pixel = UVec2::new(1, 0);
+        let mut whole = Film::new(2, 1);
+        values.iter().for_each(|&v| whole.add(pixel, v));
+        for split in [1, 17, 40] {
+            let (mut head, mut tail) = (Film::new(2, 1), Film::new(2, 1));
+            values[..split].iter().for_each(|&v| head.add(pixel, v));
+            values[split..].iter().for_each(|&v| tail.add(pixel, v));
+            tail.merge(&head).unwrap();
+            assert_eq!(
+                tail.pixel(pixel).sum,
+                whole.pixel(pixel).sum,
+                "split {split}"
+            );
+            assert_eq!(tail.to_image(), whole.to_image(), "split {split}");
+        }
+        let f64_sum = |range: &[Vec3]| range.iter().map(|v| v.as_dvec3()).sum::<DVec3>();
+        assert_ne!(
+            f64_sum(&values[17..]) + f64_sum(&values[..17]),
+            f64_sum(&values),
+            "the test needs values whose f64 sum depends on the split"
+        );
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! A fingerprint of a scene's content, which a saved render state records so that it is only
-//! resumed for the same scene.
+//! resumed for the same scene, and every rendered EXR records so that `strata merge` only adds up
+//! renders of the same scene.
 
 use std::fmt::{self, Write};
 
@@ -7,9 +8,11 @@ use scene::SceneDesc;
 
 /// A fingerprint of everything in `desc` that decides the image, as 16 hex digits: the FNV-1a
 /// hash of its integrator, sensor, film, sampler, shapes (with the vertices read from the mesh
-/// files the scene names), BSDFs and emitters, written out exactly (floats as the shortest
-/// decimal that reads back to the same value). Where the scene file lies is left out, so a moved
-/// scene still matches; a changed mesh file does not.
+/// files the scene names), BSDFs (with the texels of their bitmap textures) and emitters (with
+/// an environment map's texels), written out exactly (floats as the shortest decimal that reads
+/// back to the same value). The description holds what included files add, so they count too.
+/// Where the scene file lies is left out, so a moved scene still matches; a changed mesh,
+/// texture or included file does not.
 pub fn scene_fingerprint(desc: &SceneDesc) -> String {
     let SceneDesc {
         source: _,

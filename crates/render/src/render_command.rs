@@ -8,8 +8,10 @@ use std::time::Instant;
 use crate::cli::RenderArgs;
 use crate::commands::CommandError;
 use crate::driver::{RenderOptions, RenderOutput, ResumePoint};
+use crate::film_exr::write_film_exr;
 use crate::fingerprint::scene_fingerprint;
 use crate::session::{film_filter, render_scene};
+use crate::shard;
 use crate::state::{FORMAT, RenderState, StateHeader, VERSION};
 use crate::stats::RenderStats;
 use crate::stop::StopSignal;
@@ -33,21 +35,28 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
         }
         desc.film = desc.film.resized(width, height);
     }
-    // Only a saved or resumed state needs the scene's fingerprint (it reads every vertex).
-    let scene_hash =
-        (args.state.is_some() || args.resume.is_some()).then(|| scene_fingerprint(&desc));
+    // The image's header records the scene's fingerprint, as a saved state does.
+    let scene_hash = scene_fingerprint(&desc);
     let scene = scene::build(desc).map_err(|e| CommandError::BadInput(e.to_string()))?;
     let mut plan = plan(args, &scene.desc, &scene.features);
     let filter =
         film_filter(scene.desc.film.filter).map_err(|e| CommandError::BadInput(e.to_string()))?;
     let identity = Identity {
-        scene_hash: scene_hash.unwrap_or_default(),
+        scene_hash: scene_hash.clone(),
         settings: settings_text(&plan, &scene.desc),
     };
     let resume = match &args.resume {
         Some(path) => Some(resume_point(path, &identity, &mut plan)?),
         None => None,
     };
+    let (width, height) = (scene.desc.film.width, scene.desc.film.height);
+    let piece = match args.samples.clone() {
+        Some(range) => Some(shard::start_piece(
+            range, args.spp, &mut plan, width, height,
+        )?),
+        None => None,
+    };
+    let resume = resume.or(piece);
     let load_seconds = load_start.elapsed().as_secs_f64();
 
     let pool = rayon::ThreadPoolBuilder::new()
@@ -63,10 +72,10 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
         .install(|| render_scene(&scene, &plan, &filter, &options))
         .map_err(|e| CommandError::BadInput(format!("{}: {e}", args.scene.display())))?;
 
+    let first_sample = args.samples.as_ref().map_or(0, |range| range.start);
+    let record = shard::film_record(scene_hash, &plan, &scene.desc, first_sample, &output);
+    write_film_exr(&args.out, &output.film, &record).map_err(CommandError::Failed)?;
     let image = output.film.to_image();
-    image
-        .write_exr_with_spp(&args.out, output.spp)
-        .map_err(|e| CommandError::Failed(e.to_string()))?;
     if let Some(png) = &args.png {
         image
             .write_png(png)

@@ -2,11 +2,12 @@
 //! per-pixel sums, the samples done, and what they were rendered with.
 //!
 //! The file is one line of JSON (a [`StateHeader`]) and a newline, followed by every pixel's
-//! sums, row-major, top row first: `sum` r, g, b and `sum_sq` r, g, b as little-endian `f64`,
-//! then `count` as a little-endian `u32`, then the light paths' splat sums r, g, b and their
-//! squares' as little-endian `i128` fixed point ([`crate::film::ExactSum`]; [`PIXEL_BYTES`]
-//! bytes per pixel). Resuming adds new samples and splats to exactly these sums, so a render
-//! stopped and resumed any number of times gives the same bits as one uninterrupted render.
+//! sums, row-major, top row first: `sum` r, g, b as little-endian `i128` fixed point
+//! ([`crate::film::ExactSum`]), `sum_sq` r, g, b as little-endian `f64`, then `count` as a
+//! little-endian `u32`, then the light paths' splat sums r, g, b and their squares' as
+//! little-endian `i128` fixed point ([`PIXEL_BYTES`] bytes per pixel). Resuming adds new
+//! samples and splats to exactly these sums, so a render stopped and resumed any number of times
+//! gives the same bits as one uninterrupted render.
 
 use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
@@ -22,11 +23,15 @@ use crate::film::{ExactSum, Film, PixelSum, Splats};
 pub const FORMAT: &str = "strata-render-state";
 
 /// The state format's version in [`StateHeader::version`].
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
-/// Bytes per pixel after the header: six `f64` sums and a `u32` count, then the light paths'
-/// exact splat sums (three `i128`) and sums of squares (three `i128`).
-pub const PIXEL_BYTES: usize = 6 * 8 + 4 + 6 * 16;
+/// Bytes per pixel after the header: the exact sum (three `i128`), the sum of squares (three
+/// `f64`) and a `u32` count, then the light paths' exact splat sums (three `i128`) and sums of
+/// squares (three `i128`).
+pub const PIXEL_BYTES: usize = SPLATS_OFFSET + 6 * 16;
+
+/// Where in a pixel's bytes its splat sums start.
+const SPLATS_OFFSET: usize = 3 * 16 + 3 * 8 + 4;
 
 /// Longest header line accepted when reading, bytes.
 const MAX_HEADER_BYTES: usize = 1 << 16;
@@ -95,12 +100,10 @@ impl RenderState {
         for ((pixel, splat_sum), splat_sum_sq) in
             self.film.pixels().iter().zip(splat_sums).zip(splat_sums_sq)
         {
-            for v in pixel
-                .sum
-                .to_array()
-                .into_iter()
-                .chain(pixel.sum_sq.to_array())
-            {
+            for v in pixel.sum.0 {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+            for v in pixel.sum_sq.to_array() {
                 bytes.extend_from_slice(&v.to_le_bytes());
             }
             bytes.extend_from_slice(&pixel.count.to_le_bytes());
@@ -199,34 +202,38 @@ fn decode(header: StateHeader, data: &[u8]) -> Result<RenderState, String> {
     };
     for bytes in data.chunks_exact(PIXEL_BYTES) {
         pixels.push(read_pixel(bytes));
-        let exact = |first: usize| {
-            ExactSum([0, 1, 2].map(|c| {
-                let start = 52 + 16 * (first + c);
-                let mut b = [0u8; 16];
-                b.copy_from_slice(&bytes[start..start + 16]);
-                i128::from_le_bytes(b)
-            }))
-        };
-        splats.sums.push(exact(0));
-        splats.sums_sq.push(exact(3));
+        splats.sums.push(read_exact(&bytes[SPLATS_OFFSET..]));
+        splats
+            .sums_sq
+            .push(read_exact(&bytes[SPLATS_OFFSET + 48..]));
     }
     let film = Film::from_parts(header.width, header.height, pixels, splats)
         .ok_or("pixel count does not match the size")?;
     Ok(RenderState { header, film })
 }
 
-/// One pixel's sample sums from the first 52 of its [`PIXEL_BYTES`] bytes.
+/// An exact sum from the first 48 of `bytes` (three little-endian `i128`).
+fn read_exact(bytes: &[u8]) -> ExactSum {
+    ExactSum([0, 1, 2].map(|c| {
+        let mut b = [0u8; 16];
+        b.copy_from_slice(&bytes[16 * c..16 * c + 16]);
+        i128::from_le_bytes(b)
+    }))
+}
+
+/// One pixel's sample sums from the first [`SPLATS_OFFSET`] of its [`PIXEL_BYTES`] bytes.
 fn read_pixel(bytes: &[u8]) -> PixelSum {
     let f = |i: usize| {
+        let start = 48 + 8 * i;
         let mut b = [0u8; 8];
-        b.copy_from_slice(&bytes[8 * i..8 * i + 8]);
+        b.copy_from_slice(&bytes[start..start + 8]);
         f64::from_le_bytes(b)
     };
     let mut count = [0u8; 4];
-    count.copy_from_slice(&bytes[48..52]);
+    count.copy_from_slice(&bytes[72..76]);
     PixelSum {
-        sum: DVec3::new(f(0), f(1), f(2)),
-        sum_sq: DVec3::new(f(3), f(4), f(5)),
+        sum: read_exact(bytes),
+        sum_sq: DVec3::new(f(0), f(1), f(2)),
         count: u32::from_le_bytes(count),
     }
 }

@@ -20,7 +20,9 @@ pub struct RenderStats {
     /// Samples per pixel of the adaptive-sampling pilot (rendered, not in the image); 0 without.
     #[serde(default)]
     pub pilot_spp: u32,
-    /// Samples per pixel taken over from a saved state (`--resume`); 0 for a fresh render.
+    /// Samples per pixel taken over from a saved state (`--resume`), or the first sample index
+    /// of a `--samples START..END` piece (whose samples are `resumed_spp .. spp`); 0 for a fresh
+    /// render.
     #[serde(default)]
     pub resumed_spp: u32,
     /// Whether Ctrl-C stopped the render before its budget was spent.

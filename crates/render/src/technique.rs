@@ -226,13 +226,15 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         },
     };
     // `auto` samples adaptively where the pilot costs at most a sixteenth of the budget; a saved
-    // or resumed render cannot (its samples must not depend on a pilot).
+    // or resumed render and a piece of one (`--samples`) cannot (their samples must not depend
+    // on a pilot whose budget differs between the parts).
     let adaptive = match args.adaptive {
         Some(switch) => switch.is_on(),
         None => {
             is_auto
                 && args.state.is_none()
                 && args.resume.is_none()
+                && args.samples.is_none()
                 && budget
                     .max_spp
                     .is_none_or(|spp| spp >= AUTO_ADAPTIVE_MIN_SPP)

@@ -1,42 +1,434 @@
-//! `strata merge` and reproducibility, end to end: merging is the exact sample-weighted mean;
-//! two half renders with different seeds merged match one full render statistically; and the
-//! same scene, seed and spp give byte-identical files whatever the thread count.
+//! `strata merge` and reproducibility, end to end: pieces of one render (`--samples`) merged in
+//! any order are the single render, byte for byte, for every technique and thread count; merge
+//! refuses inputs that do not belong together (the same samples twice, other scenes, settings or
+//! sizes, an edited mesh, included file or texture); renders with different seeds pool their
+//! samples, and match one full render statistically; and the same scene, seed and spp give
+//! byte-identical files whatever the thread count.
 
 mod binary;
+
+use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use render::image::Image;
 
-use binary::{arg, read_exr, strata, strata_ok, suite_scene};
+use binary::{arg, read_exr, read_stats, strata, strata_ok, suite_scene};
+
+/// Renders `scene` to `out` at 22 × 14 pixels (not a multiple of path reuse's 4 × 4 blocks)
+/// with `flags`.
+fn render_small(scene: &Path, out: &Path, flags: &[&str]) {
+    let mut args = vec!["render", arg(scene), "--out", arg(out)];
+    args.extend(["--width", "22", "--height", "14"]);
+    args.extend(flags);
+    strata_ok(&args);
+}
+
+/// Runs `strata merge` on `inputs` into `out`.
+fn merge(inputs: &[&Path], out: &Path) -> std::process::Output {
+    let mut args = vec!["merge"];
+    args.extend(inputs.iter().map(|p| arg(p)));
+    args.extend(["--out", arg(out)]);
+    strata(&args)
+}
+
+/// Asserts that `output` exited with status 2 and that its message contains every one of
+/// `needles`.
+fn assert_refused(output: &std::process::Output, needles: &[&str]) {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    for needle in needles {
+        assert!(stderr.contains(needle), "no '{needle}' in: {stderr}");
+    }
+}
+
+/// Small spheres of radiance 1e9 over a floor lit by a dim environment: pixels at the spheres'
+/// edges mix samples of about 1e9 with samples below 1e-3, whose `f64` running sum depends on
+/// where it is split.
+const FIREFLY_SCENE: &str = r#"<scene version="3.0.0">
+    <integrator type="path"/>
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 1, -4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="22"/><integer name="height" value="14"/></film>
+    </sensor>
+    <emitter type="constant"><rgb name="radiance" value="0.001"/></emitter>
+    <shape type="sphere"><point name="center" x="-0.5" y="0.3" z="0"/><float name="radius" value="0.07"/>
+        <emitter type="area"><rgb name="radiance" value="1e9"/></emitter></shape>
+    <shape type="sphere"><point name="center" x="0.6" y="0.5" z="0.5"/><float name="radius" value="0.05"/>
+        <emitter type="area"><rgb name="radiance" value="3e9"/></emitter></shape>
+    <shape type="rectangle">
+        <transform name="to_world"><rotate x="1" angle="-90"/><scale value="3"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
+    </shape>
+</scene>
+"#;
+
+/// For `auto` with light tracing (the glass box), `auto` with path reuse (the Cornell box),
+/// `mis` with a stratified and a Sobol pattern, and [`FIREFLY_SCENE`]: three pieces 0..2, 2..5,
+/// 5..7 of a 7-spp render, rendered with 1 or 2 threads, merged in two orders and by merging a
+/// merge, are byte for byte the file the single `--spp 7` render writes (itself at 1 or 2
+/// threads).
+#[test]
+fn pieces_merge_into_the_single_render_byte_for_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let fireflies = dir.path().join("fireflies.xml");
+    std::fs::write(&fireflies, FIREFLY_SCENE).unwrap();
+    let cases: [(&str, &[&str], Option<&str>); 5] = [
+        (
+            "cbox-glass.xml",
+            &["--integrator", "auto"],
+            Some("light-tracing-caustics"),
+        ),
+        (
+            "cbox.xml",
+            &["--integrator", "auto", "--path-reuse", "4"],
+            Some("path-reuse-4x4"),
+        ),
+        (
+            "cbox.xml",
+            &["--integrator", "mis", "--sampler", "stratified"],
+            None,
+        ),
+        (
+            "veach-mis.xml",
+            &["--integrator", "mis", "--sampler", "sobol"],
+            None,
+        ),
+        ("fireflies", &["--integrator", "mis"], None),
+    ];
+    for (case, (scene, flags, technique)) in cases.iter().enumerate() {
+        let scene = if *scene == "fireflies" {
+            fireflies.clone()
+        } else {
+            suite_scene(scene)
+        };
+        let path = |name: &str| dir.path().join(format!("{case}-{name}.exr"));
+        let threads = |k: usize| {
+            if (case + k).is_multiple_of(2) {
+                "1"
+            } else {
+                "2"
+            }
+        };
+        let common = [&["--seed", "5", "--spp", "7"][..], flags].concat();
+        let single = path("single");
+        let stats = dir.path().join(format!("{case}.json"));
+        let single_flags = [
+            &common[..],
+            &["--threads", threads(0), "--stats", arg(&stats)],
+        ];
+        render_small(&scene, &single, &single_flags.concat());
+        if let Some(technique) = technique {
+            assert!(
+                read_stats(&stats).techniques.iter().any(|t| t == technique),
+                "case {case} is meant to cover {technique}"
+            );
+        }
+        let pieces: Vec<PathBuf> = ["0..2", "2..5", "5..7"]
+            .iter()
+            .enumerate()
+            .map(|(k, range)| {
+                let out = path(&format!("piece{k}"));
+                let piece_flags = [
+                    &common[..],
+                    &["--samples", range, "--threads", threads(k + 1)],
+                ];
+                render_small(&scene, &out, &piece_flags.concat());
+                out
+            })
+            .collect();
+        let single_bytes = std::fs::read(&single).unwrap();
+        for (name, order) in [("m1", [2, 0, 1]), ("m2", [1, 2, 0])] {
+            let merged = path(name);
+            let inputs: Vec<&Path> = order.iter().map(|&i| pieces[i].as_path()).collect();
+            let output = merge(&inputs, &merged);
+            assert!(
+                output.status.success(),
+                "{}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+            assert!(
+                std::fs::read(&merged).unwrap() == single_bytes,
+                "case {case}: pieces merged in the order {order:?} differ from the single render"
+            );
+        }
+        let (head, all) = (path("head"), path("all"));
+        assert!(merge(&[&pieces[1], &pieces[0]], &head).status.success());
+        assert!(merge(&[&pieces[2], &head], &all).status.success());
+        assert!(
+            std::fs::read(&all).unwrap() == single_bytes,
+            "case {case}: a merge of a merge differs from the single render"
+        );
+        assert!(
+            read_exr(&pieces[0]).0 != read_exr(&single).0,
+            "case {case}: a piece must differ from the whole for the test to mean anything"
+        );
+    }
+}
 
 #[test]
-fn merge_is_the_exact_sample_weighted_mean() {
+fn merge_refuses_what_does_not_belong_together_naming_the_files() {
     let dir = tempfile::tempdir().unwrap();
-    let (a, b, m) = (
-        dir.path().join("a.exr"),
-        dir.path().join("b.exr"),
-        dir.path().join("m.exr"),
+    let path = |name: &str| dir.path().join(name);
+    let cbox = suite_scene("cbox.xml");
+    let piece = |name: &str, scene: &Path, flags: &[&str]| {
+        let out = path(name);
+        let spp = if flags.contains(&"--spp") {
+            &[][..]
+        } else {
+            &["--spp", "8"]
+        };
+        render_small(scene, &out, &[&["--seed", "2"][..], spp, flags].concat());
+        out
+    };
+    let a = piece("a.exr", &cbox, &["--samples", "0..4"]);
+    let out = path("out.exr");
+    assert_refused(&merge(&[&a, &a], &out), &["'", "a.exr' is given twice"]);
+    let copy = path("copy.exr");
+    std::fs::copy(&a, &copy).unwrap();
+    assert_refused(
+        &merge(&[&a, &copy], &out),
+        &["a.exr' and '", "copy.exr' both hold samples 0..4 of seed"],
     );
+    let overlapping = piece("overlapping.exr", &cbox, &["--samples", "2..6"]);
+    assert_refused(
+        &merge(&[&a, &overlapping], &out),
+        &["overlapping.exr' both hold samples 2..4"],
+    );
+    let veach = piece(
+        "veach.exr",
+        &suite_scene("veach-mis.xml"),
+        &["--samples", "4..8"],
+    );
+    assert_refused(
+        &merge(&[&a, &veach], &out),
+        &["veach.exr' and '", "a.exr' are renders of different scenes"],
+    );
+    let nee = piece(
+        "nee.exr",
+        &cbox,
+        &["--samples", "4..8", "--integrator", "nee"],
+    );
+    assert_refused(
+        &merge(&[&a, &nee], &out),
+        &["nee.exr' and '", "different settings"],
+    );
+    let deeper = piece(
+        "deeper.exr",
+        &cbox,
+        &["--samples", "4..8", "--max-depth", "3"],
+    );
+    assert_refused(
+        &merge(&[&a, &deeper], &out),
+        &["deeper.exr", "different settings"],
+    );
+    // A stratified 16-sample pattern is another render than an 8-sample one.
+    let stratified = ["--sampler", "stratified"];
+    let narrow = piece(
+        "narrow.exr",
+        &cbox,
+        &[&["--samples", "0..4"][..], &stratified].concat(),
+    );
+    let wider = piece(
+        "wider.exr",
+        &cbox,
+        &[&["--samples", "4..8", "--spp", "16"][..], &stratified].concat(),
+    );
+    assert_refused(
+        &merge(&[&narrow, &wider], &out),
+        &["wider.exr", "different settings"],
+    );
+    let larger = path("larger.exr");
+    strata_ok(&[
+        "render",
+        arg(&cbox),
+        "--out",
+        arg(&larger),
+        "--seed",
+        "2",
+        "--spp",
+        "8",
+        "--samples",
+        "4..8",
+        "--width",
+        "22",
+        "--height",
+        "16",
+    ]);
+    assert_refused(
+        &merge(&[&a, &larger], &out),
+        &["larger.exr' is 22x16 pixels but '", "a.exr' is 22x14"],
+    );
+    let plain = path("plain.exr");
+    Image::new(22, 14).write_exr_with_spp(&plain, 4).unwrap();
+    assert_refused(
+        &merge(&[&a, &plain], &out),
+        &["plain.exr", "no \"strata\" header"],
+    );
+    assert!(!out.exists(), "a refused merge writes nothing");
+    // The rest of the render merges (the refusals above are about what differs).
+    let b = piece("b.exr", &cbox, &["--samples", "4..8"]);
+    assert!(merge(&[&a, &b], &out).status.success());
+}
+
+#[test]
+fn samples_past_the_render_or_with_a_time_budget_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o.exr");
     let scene = suite_scene("cbox.xml");
-    let size = ["--width", "12", "--height", "10"];
-    for (out, spp, seed) in [(&a, "3", "1"), (&b, "5", "2")] {
-        let mut args = vec!["render", arg(&scene), "--out", arg(out), "--spp", spp];
-        args.extend(["--seed", seed]);
-        args.extend(size);
-        strata_ok(&args);
+    let base = [
+        "render",
+        arg(&scene),
+        "--out",
+        arg(&out),
+        "--width",
+        "8",
+        "--height",
+        "8",
+    ];
+    let run = |extra: &[&str]| strata(&[&base[..], extra].concat());
+    assert_refused(
+        &run(&["--samples", "0..32", "--spp", "16"]),
+        &["--samples 0..32 goes past --spp 16"],
+    );
+    assert_refused(
+        &run(&["--samples", "0..4", "--time", "1"]),
+        &["--samples", "--time"],
+    );
+    assert_refused(
+        &run(&["--samples", "0..4", "--adaptive"]),
+        &["--samples", "--adaptive"],
+    );
+    assert_refused(&run(&["--samples", "4..2"]), &["4..2"]);
+    assert!(!out.exists());
+}
+
+/// A scene made of a main file, an included file, an OBJ mesh and a PNG texture.
+const MAIN_SCENE: &str = r#"<scene version="3.0.0">
+    <integrator type="path"/>
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, -3" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+    </sensor>
+    <include filename="light.xml"/>
+    <shape type="obj">
+        <string name="filename" value="quad.obj"/>
+        <bsdf type="diffuse">
+            <texture type="bitmap" name="reflectance"><string name="filename" value="tex.png"/></texture>
+        </bsdf>
+    </shape>
+</scene>
+"#;
+
+const LIGHT: &str = r#"<scene version="3.0.0">
+    <emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>
+</scene>
+"#;
+
+const QUAD: &str = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+
+/// Editing the mesh, the included file or the texture changes the scene's fingerprint, so a
+/// piece rendered after the edit does not merge with one rendered before; restored, it does.
+#[test]
+fn an_edited_mesh_include_or_texture_is_another_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |name: &str| dir.path().join(name);
+    let scene = file("main.xml");
+    std::fs::write(&scene, MAIN_SCENE).unwrap();
+    let write_inputs = |light: &str, quad: &str, texel: f32| {
+        std::fs::write(file("light.xml"), light).unwrap();
+        std::fs::write(file("quad.obj"), quad).unwrap();
+        Image::from_fn(2, 2, |x, y| {
+            glam::Vec3::new(texel, 0.2 * x as f32, 0.3 * y as f32)
+        })
+        .write_png(&file("tex.png"))
+        .unwrap();
+    };
+    let piece = |name: &str, range: &str| {
+        let out = file(name);
+        let flags = ["--spp", "4", "--samples", range, "--seed", "1"];
+        strata_ok(&[&["render", arg(&scene), "--out", arg(&out)][..], &flags].concat());
+        out
+    };
+    write_inputs(LIGHT, QUAD, 0.5);
+    let first = piece("first.exr", "0..2");
+    let out = file("out.exr");
+    for (name, light, quad, texel) in [
+        (
+            "mesh.exr",
+            LIGHT,
+            QUAD.replacen("v 1 1 0", "v 1 1 0.5", 1),
+            0.5,
+        ),
+        (
+            "include.exr",
+            &LIGHT.replace("1, 1, 1", "1, 1, 2"),
+            QUAD.to_string(),
+            0.5,
+        ),
+        ("texture.exr", LIGHT, QUAD.to_string(), 0.75),
+    ] {
+        write_inputs(light, &quad, texel);
+        let edited = piece(name, "2..4");
+        assert_refused(
+            &merge(&[&first, &edited], &out),
+            &[name, "different scenes"],
+        );
     }
-    strata_ok(&["merge", arg(&a), arg(&b), "--out", arg(&m)]);
+    write_inputs(LIGHT, QUAD, 0.5);
+    let second = piece("second.exr", "2..4");
+    let output = merge(&[&first, &second], &out);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// Two independent-sampler renders with seeds 1 (4 spp) and 2 (12 spp) merge into the pool of
+/// their samples: the header records 16 spp, and each pixel is (4 a + 12 b) / 16 up to `f32`
+/// rounding (the Cornell box has no non-finite samples, so every pixel has all its samples).
+/// Stratified renders laid out for 4 and 5 samples are different patterns and are refused.
+#[test]
+fn renders_with_different_seeds_pool_their_samples() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = |name: &str| dir.path().join(name);
+    let scene = suite_scene("cbox.xml");
+    let render = |name: &str, seed: &str, spp: &str, sampler: &str| {
+        let out = path(name);
+        let flags = [
+            "--seed",
+            seed,
+            "--spp",
+            spp,
+            "--integrator",
+            "mis",
+            "--sampler",
+            sampler,
+        ];
+        render_small(&scene, &out, &flags);
+        out
+    };
+    let a = render("a.exr", "1", "4", "independent");
+    let b = render("b.exr", "2", "12", "independent");
+    let m = path("m.exr");
+    assert!(merge(&[&b, &a], &m).status.success());
     let ((ia, _), (ib, _), (im, spp)) = (read_exr(&a), read_exr(&b), read_exr(&m));
-    assert_eq!(spp, Some(8), "the merged header holds the total");
+    assert_eq!(spp, Some(16), "the merged header holds the total");
     for ((pa, pb), pm) in ia.data.iter().zip(&ib.data).zip(&im.data) {
-        let expected = ((3.0 * pa.as_dvec3() + 5.0 * pb.as_dvec3()) / 8.0).as_vec3();
-        assert_eq!(*pm, expected);
+        let expected = (4.0 * pa.as_dvec3() + 12.0 * pb.as_dvec3()) / 16.0;
+        let error = (pm.as_dvec3() - expected).abs();
+        let bound = expected.abs() * 2e-7 + DVec3::splat(1e-12);
+        assert!(
+            error.cmple(bound).all(),
+            "{pm} is not (4 · {pa} + 12 · {pb}) / 16"
+        );
     }
-    let plain = dir.path().join("plain.exr");
-    Image::new(12, 10).write_exr(&plain).unwrap();
-    let output = strata(&["merge", arg(&a), arg(&plain), "--out", arg(&m)]);
-    assert_eq!(output.status.code(), Some(2), "an image without spp");
-    assert!(String::from_utf8_lossy(&output.stderr).contains("plain.exr"));
+    let four = render("four.exr", "1", "4", "stratified");
+    let five = render("five.exr", "3", "5", "stratified");
+    assert_refused(
+        &merge(&[&four, &five], &m),
+        &["five.exr", "different settings"],
+    );
 }
 
 /// Per channel: mean over pixels, and mean squared difference from `reference`.
@@ -95,6 +487,8 @@ fn merged_halves_have_the_statistics_of_one_full_render() {
             seed,
             "--sampler",
             "independent",
+            "--adaptive",
+            "off",
         ]);
         out
     };

@@ -68,8 +68,9 @@ impl Image {
     }
 
     /// Writes the image as [`Image::write_exr`] does, recording `spp`, the samples per pixel
-    /// each pixel's value averages, in the header as the `int` attribute [`SPP_ATTRIBUTE`]
-    /// (`strata merge` weights images by it). Counts above `i32::MAX` are an error.
+    /// each pixel's value averages, in the header as the `int` attribute [`SPP_ATTRIBUTE`] (as
+    /// the files of `strata render` record it, see [`crate::film_exr`]). Counts above
+    /// `i32::MAX` are an error.
     pub fn write_exr_with_spp(&self, path: &Path, spp: u32) -> Result<(), ImageError> {
         let spp = i32::try_from(spp).map_err(|_| ImageError::Write {
             path: path.to_path_buf(),
