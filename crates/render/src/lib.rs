@@ -40,5 +40,6 @@ pub mod session;
 pub mod state;
 pub mod stats;
 pub mod stop;
+pub mod summary;
 pub mod technique;
 pub mod tiles;
