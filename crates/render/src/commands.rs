@@ -65,7 +65,7 @@ pub fn run(command: &Command, out: &mut dyn Write, stop: &StopSignal) -> Result<
             if let Some(png) = &args.png {
                 merged
                     .image
-                    .write_png(png)
+                    .write_png_with_exposure(png, args.exposure)
                     .map_err(|e| CommandError::Failed(e.to_string()))?;
             }
             Ok(())
