@@ -1,14 +1,26 @@
 //! The `strata` command line (a contract: see the design notes), parsed with clap.
 //!
 //! ```text
-//! strata render SCENE.xml --out OUT.exr [--spp N] [--time SECONDS]
-//!               [--integrator reference|nee|mis|ris|auto] [--sampler independent|stratified|bluenoise|sobol]
-//!               [--rr on|off] [--adaptive [on|off]] [--light-tracing] [--path-reuse [off|2|4]] [--max-depth N] [--seed N] [--threads N] [--width W --height H]
-//!               [--png OUT.png] [--stats OUT.json] [--state STATE] [--resume STATE]
-//!               [--samples START..END] [-D NAME=VALUE ...]
+//! strata render SCENE.xml [-o|--out OUT.exr] [--spp N] [--time SECONDS]
+//!               [--integrator reference|nee|mis|ris|auto|path] [--sampler independent|stratified|bluenoise|sobol]
+//!               [--rr on|off] [--adaptive [on|off]] [--light-tracing] [--path-reuse [off|2|4]] [--max-depth N] [--seed N]
+//!               [-t|--threads N] [--width W --height H] [--png OUT.png] [--exposure STOPS]
+//!               [--stats OUT.json] [--state STATE] [--resume STATE] [--samples START..END]
+//!               [-D NAME=VALUE ...] [-q|--quiet]
 //! strata diff A.exr B.exr
-//! strata merge A.exr B.exr … --out OUT.exr [--png OUT.png]
+//! strata merge A.exr B.exr … --out OUT.exr [--png OUT.png] [--exposure STOPS]
 //! ```
+//!
+//! Without `--out`, `strata render` writes `SCENE.exr` (the scene file's name with `.exr` for
+//! its extension) in the working directory, as Mitsuba does; it never writes over the scene
+//! file. After a successful render it prints one summary line on standard error, e.g.
+//!
+//! ```text
+//! cbox.exr: 256×256, 128 spp, 1.84 s, 9.61 M rays/s, auto: bsdf-sampling+nee+…
+//! ```
+//!
+//! (see [`crate::summary`]); `--quiet` leaves it and the progress bar out. `path`, Mitsuba's
+//! name for its integrator, is another name for `auto`.
 //!
 //! Bad flags and values make clap print a message and exit with status 2.
 
@@ -55,7 +67,9 @@ pub enum IntegratorPreset {
     /// `mis` with RIS light selection.
     Ris,
     /// The best of these for the scene, leaving out what it does not need, with caustics by
-    /// light tracing where they apply (see --light-tracing).
+    /// light tracing where they apply (see --light-tracing). Also called `path`, Mitsuba's name
+    /// for its integrator.
+    #[value(alias = "path")]
     Auto,
 }
 
@@ -94,9 +108,11 @@ impl Switch {
 pub struct RenderArgs {
     /// The Mitsuba 3 XML scene file.
     pub scene: PathBuf,
-    /// Output image: linear RGB float32 OpenEXR, top row first.
-    #[arg(long, value_name = "OUT.exr")]
-    pub out: PathBuf,
+    /// Output image: linear RGB float32 OpenEXR, top row first; written whole or not at all.
+    /// Default: the scene file's name with the extension `.exr`, in the working directory
+    /// (see [`RenderArgs::out_path`]).
+    #[arg(short, long, value_name = "OUT.exr")]
+    pub out: Option<PathBuf>,
     /// Samples per pixel (1 to 2^24); with --time, whichever limit comes first stops. With
     /// --resume, the total including the resumed samples.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=i64::from(scene::limits::MAX_SAMPLE_COUNT)))]
@@ -147,7 +163,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
     /// Rendering threads (default: all cores).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(short, long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub threads: Option<u32>,
     /// Image width in pixels (with --height).
     #[arg(long, value_name = "W", requires = "height", value_parser = clap::value_parser!(u32).range(1..))]
@@ -158,6 +174,11 @@ pub struct RenderArgs {
     /// Also write an 8-bit sRGB PNG preview.
     #[arg(long, value_name = "OUT.png")]
     pub png: Option<PathBuf>,
+    /// Exposure of the PNG preview in stops: its pixels are sRGB(linear × 2^STOPS). The EXR
+    /// is not affected.
+    #[arg(long, value_name = "STOPS", default_value_t = 0.0, allow_hyphen_values = true,
+          value_parser = parse_exposure)]
+    pub exposure: f32,
     /// Also write render statistics as JSON.
     #[arg(long, value_name = "OUT.json")]
     pub stats: Option<PathBuf>,
@@ -183,6 +204,27 @@ pub struct RenderArgs {
     #[arg(long, value_name = "START..END", value_parser = crate::shard::parse_sample_range,
           conflicts_with_all = ["time", "adaptive", "state", "resume"])]
     pub samples: Option<std::ops::Range<u32>>,
+    /// Print nothing on success: no progress bar and no summary line (warnings and errors
+    /// still go to standard error).
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+impl RenderArgs {
+    /// The image file to write: `--out`, or else the scene file's name with the extension
+    /// `.exr` in the working directory (`scenes/cbox.xml` → `cbox.exr`), as Mitsuba names its
+    /// output. `None` when the scene path has no file name to take (e.g. `..`).
+    pub fn out_path(&self) -> Option<PathBuf> {
+        match &self.out {
+            Some(out) => Some(out.clone()),
+            None => self.scene.file_stem().map(|stem| {
+                // Not `with_extension`, which would also drop a dotted stem's last part.
+                let mut name = stem.to_os_string();
+                name.push(".exr");
+                PathBuf::from(name)
+            }),
+        }
+    }
 }
 
 /// `strata merge`.
@@ -199,6 +241,11 @@ pub struct MergeArgs {
     /// Also write an 8-bit sRGB PNG preview.
     #[arg(long, value_name = "OUT.png")]
     pub png: Option<PathBuf>,
+    /// Exposure of the PNG preview in stops: its pixels are sRGB(linear × 2^STOPS). The EXR
+    /// is not affected.
+    #[arg(long, value_name = "STOPS", default_value_t = 0.0, allow_hyphen_values = true,
+          value_parser = parse_exposure)]
+    pub exposure: f32,
 }
 
 /// `strata diff`.
@@ -218,6 +265,22 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
             "'{text}' is not a positive, finite number of seconds"
         )),
         Err(e) => Err(format!("'{text}' is not a number: {e}")),
+    }
+}
+
+/// Largest exposure magnitude in stops: 2^±64 is far beyond any useful preview and well
+/// inside `f32`'s range, so the scale factor is always finite and non-zero.
+pub const MAX_EXPOSURE_STOPS: f32 = 64.0;
+
+/// Parses an exposure in stops: a finite number of magnitude at most [`MAX_EXPOSURE_STOPS`].
+fn parse_exposure(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(stops) if stops.is_finite() && stops.abs() <= MAX_EXPOSURE_STOPS => Ok(stops),
+        Ok(_) => Err(format!(
+            "'{text}' is not a finite number of stops from -{MAX_EXPOSURE_STOPS} to \
+             {MAX_EXPOSURE_STOPS}"
+        )),
+        Err(e) => Err(format!("'{text}' is not a number of stops: {e}")),
     }
 }
 
@@ -327,7 +390,7 @@ mod tests {
         ]);
         assert_eq!(r.scene, Path::new("scene.xml"));
         assert!(r.adaptive == Some(Switch::On) && r.light_tracing);
-        assert_eq!(r.out, Path::new("o.exr"));
+        assert_eq!(r.out.as_deref(), Some(Path::new("o.exr")));
         assert_eq!((r.spp, r.time), (Some(64), Some(0.5)));
         assert_eq!(r.integrator, IntegratorPreset::Mis);
         assert_eq!(r.sampler, Some(SamplerKind::BlueNoise));
@@ -355,7 +418,77 @@ mod tests {
             (None, None, None, None, None)
         );
         assert_eq!((r.state, r.resume), (None, None));
-        assert!(r.adaptive.is_none() && !r.light_tracing);
+        assert!(r.adaptive.is_none() && !r.light_tracing && !r.quiet);
+        assert_eq!(r.exposure, 0.0);
+    }
+
+    #[test]
+    fn without_out_the_image_is_named_after_the_scene_in_the_working_directory() {
+        let r = render_args(&["render", "scenes/cbox.xml"]);
+        assert_eq!(r.out, None);
+        assert_eq!(r.out_path(), Some(PathBuf::from("cbox.exr")));
+        let dotted = render_args(&["render", "/tmp/a.b/veach.mis.xml"]);
+        assert_eq!(dotted.out_path(), Some(PathBuf::from("veach.mis.exr")));
+        let given = render_args(&["render", "scenes/cbox.xml", "--out", "x/y.exr"]);
+        assert_eq!(given.out_path(), Some(PathBuf::from("x/y.exr")));
+        assert_eq!(render_args(&["render", ".."]).out_path(), None);
+    }
+
+    #[test]
+    fn short_flags_are_the_long_ones() {
+        let r = render_args(&["render", "s.xml", "-o", "o.exr", "-t", "3", "-q"]);
+        assert_eq!(r.out.as_deref(), Some(Path::new("o.exr")));
+        assert_eq!(r.threads, Some(3));
+        assert!(r.quiet);
+        let long = render_args(&[
+            "render",
+            "s.xml",
+            "--out",
+            "o.exr",
+            "--threads",
+            "3",
+            "--quiet",
+        ]);
+        assert_eq!(r, long);
+    }
+
+    #[test]
+    fn path_is_another_name_for_auto() {
+        let r = render_args(&["render", "s.xml", "--integrator", "path"]);
+        assert_eq!(r.integrator, IntegratorPreset::Auto);
+        // The alias is not a sixth preset: the help lists the five names.
+        let names: Vec<String> = IntegratorPreset::value_variants()
+            .iter()
+            .filter_map(|p| p.to_possible_value())
+            .map(|v| v.get_name().to_string())
+            .collect();
+        assert_eq!(names, ["reference", "nee", "mis", "ris", "auto"]);
+    }
+
+    #[test]
+    fn exposure_takes_finite_stops_of_either_sign() {
+        let exposure = |value: &str| {
+            parse(&["render", "s.xml", "--exposure", value]).map(|cli| match cli.command {
+                Command::Render(r) => r.exposure,
+                other => panic!("not a render command: {other:?}"),
+            })
+        };
+        assert_eq!(exposure("1").unwrap(), 1.0);
+        assert_eq!(exposure("-2.5").unwrap(), -2.5);
+        assert_eq!(exposure("64").unwrap(), 64.0);
+        for bad in ["NaN", "inf", "-inf", "64.5", "1e9", "bright"] {
+            let error = exposure(bad).expect_err(&format!("--exposure {bad} must not parse"));
+            assert_eq!(error.exit_code(), 2, "{bad}: {error}");
+            assert!(error.to_string().contains(bad), "{bad}: {error}");
+        }
+        let merge = parse(&["merge", "a.exr", "--out", "m.exr", "--exposure", "-1"]).unwrap();
+        assert!(
+            matches!(
+                merge.command,
+                Command::Merge(MergeArgs { exposure: -1.0, .. })
+            ),
+            "{merge:?}"
+        );
     }
 
     #[test]
@@ -372,6 +505,7 @@ mod tests {
                 inputs: vec!["a.exr".into(), "b.exr".into(), "c.exr".into()],
                 out: "m.exr".into(),
                 png: None,
+                exposure: 0.0,
             })
         );
         assert!(parse(&["merge", "--out", "m.exr"]).is_err());
@@ -409,7 +543,8 @@ mod tests {
     #[test]
     fn bad_values_are_usage_errors_with_status_2() {
         for bad in [
-            &["render", "s.xml"][..],
+            &["render"][..],
+            &["render", "s.xml", "-o"],
             &["render", "s.xml", "--out", "o.exr", "--time", "0"],
             &["render", "s.xml", "--out", "o.exr", "--time", "-1"],
             &["render", "s.xml", "--out", "o.exr", "--time", "NaN"],

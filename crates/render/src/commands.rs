@@ -62,7 +62,7 @@ pub fn run(command: &Command, out: &mut dyn Write, stop: &StopSignal) -> Result<
             write_film_exr(&args.out, &film, &record).map_err(CommandError::Failed)?;
             if let Some(png) = &args.png {
                 film.to_image()
-                    .write_png(png)
+                    .write_png_with_exposure(png, args.exposure)
                     .map_err(|e| CommandError::Failed(e.to_string()))?;
             }
             Ok(())

@@ -266,7 +266,7 @@ where
         ),
         ..*budget
     };
-    let progress = Progress::new(options.progress);
+    let progress = Progress::for_budget(options.progress, budget);
     let start = Instant::now();
     let (mut spp, mut last_pass) = (resumed_spp, 0u32);
     let mut interrupted = false;

@@ -43,5 +43,6 @@ pub mod shard;
 pub mod state;
 pub mod stats;
 pub mod stop;
+pub mod summary;
 pub mod technique;
 pub mod tiles;

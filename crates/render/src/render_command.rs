@@ -1,7 +1,7 @@
 //! `strata render`: load the scene, render it as planned (continuing a saved state if asked),
 //! write the image, the saved state and the stats.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -15,12 +15,14 @@ use crate::shard;
 use crate::state::{FORMAT, RenderState, StateHeader, VERSION};
 use crate::stats::RenderStats;
 use crate::stop::StopSignal;
+use crate::summary::summary_line;
 use crate::technique::{RenderPlan, plan};
 use scene::SceneDesc;
 use scene::limits::MAX_FILM_PIXELS;
 
 /// Runs `strata render` as `args` say; stops early once `stop` is raised.
 pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
+    let out = output_path(args)?;
     let load_start = Instant::now();
     let scene_bytes =
         scene::read_scene_file(&args.scene).map_err(|e| CommandError::BadInput(e.to_string()))?;
@@ -64,6 +66,7 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
         .build()
         .map_err(|e| CommandError::Failed(format!("cannot start the render threads: {e}")))?;
     let options = RenderOptions {
+        progress: !args.quiet,
         stop: Some(stop.clone()),
         resume,
         ..RenderOptions::default()
@@ -74,11 +77,11 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
 
     let first_sample = args.samples.as_ref().map_or(0, |range| range.start);
     let record = shard::film_record(scene_hash, &plan, &scene.desc, first_sample, &output);
-    write_film_exr(&args.out, &output.film, &record).map_err(CommandError::Failed)?;
+    write_film_exr(&out, &output.film, &record).map_err(CommandError::Failed)?;
     let image = output.film.to_image();
     if let Some(png) = &args.png {
         image
-            .write_png(png)
+            .write_png_with_exposure(png, args.exposure)
             .map_err(|e| CommandError::Failed(e.to_string()))?;
     }
     if let Some(path) = &args.state {
@@ -117,12 +120,15 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
     if output.interrupted {
         return Err(CommandError::Interrupted(format!(
             "interrupted: wrote '{}' with {} samples per pixel{}",
-            args.out.display(),
+            out.display(),
             output.spp,
             plan.budget
                 .max_spp
                 .map_or(String::new(), |max| format!(" of {max}"))
         )));
+    }
+    if !args.quiet {
+        eprintln!("{}", summary_line(&out, &stats, args.integrator));
     }
     Ok(())
 }
@@ -196,5 +202,48 @@ fn saved_state(output: &RenderOutput, plan: &RenderPlan, identity: Identity) -> 
             settings: identity.settings,
         },
         film: output.film.clone(),
+    }
+}
+
+/// The image file to write ([`RenderArgs::out_path`]); bad input when there is none, or when
+/// it or another output file (`--png`, `--stats`, `--state`) is the scene file itself.
+fn output_path(args: &RenderArgs) -> Result<PathBuf, CommandError> {
+    let out = args.out_path().ok_or_else(|| {
+        CommandError::BadInput(format!(
+            "'{}' has no file name to name the image after; give --out",
+            args.scene.display()
+        ))
+    })?;
+    let outputs = [
+        (
+            args.out.as_ref().map_or(
+                "the image (default: the scene's name with .exr)",
+                |_| "--out",
+            ),
+            Some(&out),
+        ),
+        ("--png", args.png.as_ref()),
+        ("--stats", args.stats.as_ref()),
+        ("--state", args.state.as_ref()),
+    ];
+    for (flag, path) in outputs {
+        if let Some(path) = path
+            && is_same_file(path, &args.scene)
+        {
+            return Err(CommandError::BadInput(format!(
+                "{flag} '{}' is the scene file '{}'; refusing to write over it",
+                path.display(),
+                args.scene.display()
+            )));
+        }
+    }
+    Ok(out)
+}
+
+/// Whether `a` and `b` both exist and name the same file (after resolving links and `..`).
+fn is_same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
     }
 }

@@ -28,11 +28,20 @@ impl Image {
     /// clamped to `[0, 1]` and sRGB-encoded (no tone mapping, no exposure). Atomic (see
     /// [`crate::atomic_write::write_atomically`]).
     pub fn write_png(&self, path: &Path) -> Result<(), ImageError> {
+        self.write_png_with_exposure(path, 0.0)
+    }
+
+    /// [`write_png`](Self::write_png) of the image scaled by `2^stops` (its exposure in photographic
+    /// stops): each channel is `linear_to_srgb8(linear × 2^stops)`. At 0 stops the scale is
+    /// exactly 1. `stops` should be finite and small enough for `2^stops` to be a finite,
+    /// non-zero `f32` (the command line allows ±[`crate::cli::MAX_EXPOSURE_STOPS`]).
+    pub fn write_png_with_exposure(&self, path: &Path, stops: f32) -> Result<(), ImageError> {
         self.check_dimensions()?;
+        let scale = stops.exp2();
         let bytes: Vec<u8> = self
             .data
             .iter()
-            .flat_map(|v: &Vec3| v.to_array().map(linear_to_srgb8))
+            .flat_map(|v: &Vec3| (*v * scale).to_array().map(linear_to_srgb8))
             .collect();
         let result: Result<(), png::EncodingError> = write_atomically(path, |writer| {
             let mut encoder = png::Encoder::new(writer, self.width, self.height);
@@ -88,6 +97,38 @@ mod tests {
             [0, 0, 188, 255, 0, 188, 0, 255, 188, 255, 255, 188]
         );
         assert!(reader.info().srgb.is_some(), "the file is tagged sRGB");
+    }
+
+    /// The 8-bit codes of the PNG at `path`.
+    fn png_bytes(path: &Path) -> Vec<u8> {
+        let decoder =
+            png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+        let mut reader = decoder.read_info().unwrap();
+        let mut buffer = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut buffer).unwrap();
+        buffer.truncate(info.buffer_size());
+        buffer
+    }
+
+    #[test]
+    fn exposure_scales_the_linear_values_by_powers_of_two() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.png");
+        let image = Image::from_fn(2, 1, |x, _| Vec3::new(0.05, 0.1, 0.3) * (x + 1) as f32);
+        let codes = |stops: f32| {
+            image.write_png_with_exposure(&path, stops).unwrap();
+            png_bytes(&path)
+        };
+        image.write_png(&path).unwrap();
+        assert_eq!(png_bytes(&path), codes(0.0), "write_png is exposure 0");
+        // 0.05, 0.1, 0.3, 0.1, 0.2, 0.6 doubled and quartered, encoded by hand.
+        let expect = |values: [f32; 6]| values.map(linear_to_srgb8).to_vec();
+        assert_eq!(codes(1.0), expect([0.1, 0.2, 0.6, 0.2, 0.4, 1.2]));
+        assert_eq!(
+            codes(-2.0),
+            expect([0.0125, 0.025, 0.075, 0.025, 0.05, 0.15])
+        );
+        assert_ne!(codes(1.0), codes(0.0));
     }
 
     #[test]
