@@ -144,11 +144,14 @@ fn choose_techniques(
         return Ok(None);
     }
     let (width, height) = (scene.desc.film.width, scene.desc.film.height);
-    let Some(thumbnail) = auto::thumbnail_size(width, height, &plan.trials, plan.budget.max_spp)
-    else {
+    // The whole render's samples per pixel: a `--samples` piece lays its sampler out for the
+    // render it is a piece of, and must choose as that render does, whatever its own range
+    // (otherwise pieces of one render could choose differently, and not merge into it).
+    let whole_spp = plan.budget.max_spp.map(|_| plan.sampler_spp);
+    let Some(thumbnail) = auto::thumbnail_size(width, height, &plan.trials, whole_spp) else {
         let reason = format!(
             "{} spp: a pilot of {} pixels or more would take more than {}% of the samples",
-            plan.budget.max_spp.unwrap_or(0),
+            whole_spp.unwrap_or(0),
             auto::MIN_PILOT_PIXELS,
             auto::MAX_PILOT_SHARE * 100.0
         );

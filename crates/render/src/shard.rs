@@ -15,7 +15,7 @@ use crate::commands::CommandError;
 use crate::driver::{NonFiniteCounts, RenderBudget, RenderOutput, ResumePoint};
 use crate::film::Film;
 use crate::film_exr::{RenderRecord, SampleRanges, render_settings};
-use crate::technique::RenderPlan;
+use crate::technique::{RenderPlan, Transport};
 use scene::SceneDesc;
 use scene::limits::MAX_SAMPLE_COUNT;
 
@@ -73,9 +73,9 @@ pub fn start_piece(
 }
 
 /// The record of what `output`'s film holds: the scene's fingerprint `scene_hash`, the
-/// settings of `plan` for `desc`, and the sample indices from `first` (the piece's START, else
-/// 0) up to where the render stopped (without an adaptive pilot's samples, which are not in
-/// the film).
+/// settings of `plan` for `desc` (with the techniques `auto`'s pilot chose, where it ran: those
+/// rendered the film), and the sample indices from `first` (the piece's START, else 0) up to
+/// where the render stopped (without an adaptive pilot's samples, which are not in the film).
 pub fn film_record(
     scene_hash: String,
     plan: &RenderPlan,
@@ -83,9 +83,16 @@ pub fn film_record(
     first: u32,
     output: &RenderOutput,
 ) -> RenderRecord {
+    let rendered = match &output.auto {
+        Some(pilot) => RenderPlan {
+            transport: Transport::Path(pilot.choice.settings),
+            ..*plan
+        },
+        None => *plan,
+    };
     RenderRecord {
         scene: scene_hash,
-        settings: render_settings(plan, desc),
+        settings: render_settings(&rendered, desc),
         samples: SampleRanges::single(plan.seed, first..output.spp - output.pilot_spp),
     }
 }

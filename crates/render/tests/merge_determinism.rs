@@ -165,6 +165,51 @@ fn pieces_merge_into_the_single_render_byte_for_byte() {
     }
 }
 
+/// `auto` with its technique pilot: every piece of a render chooses as the whole render does,
+/// and records what it chose. On the many-lights scene at 64 spp the pilot keeps RIS; a piece
+/// `0..2` judged the pilot by its own 2 samples could not pay for it and kept the base, and the
+/// pieces' records named the base either way, so the two merged into neither render.
+#[test]
+fn auto_pieces_choose_as_the_whole_render_and_merge_into_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = |name: &str| dir.path().join(name);
+    let scene = suite_scene("manylights.xml");
+    let render = |out: &Path, flags: &[&str]| {
+        let mut args = vec!["render", arg(&scene), "--out", arg(out), "-q"];
+        args.extend(["--spp", "64", "--seed", "3", "--integrator", "auto"]);
+        args.extend(flags);
+        strata_ok(&args);
+    };
+    let (single, stats) = (path("single.exr"), path("single.json"));
+    render(&single, &["--adaptive", "off", "--stats", arg(&stats)]);
+    let choice = read_stats(&stats).auto_choice.unwrap_or_default();
+    assert!(
+        choice.ends_with("chose +ris"),
+        "the test needs a pilot that keeps a trial: {choice}"
+    );
+    let (a, b, merged) = (path("a.exr"), path("b.exr"), path("merged.exr"));
+    render(&a, &["--samples", "0..2"]);
+    render(&b, &["--samples", "2..64"]);
+    let record = |file: &Path| {
+        let bytes = std::fs::read(file).unwrap();
+        let text = String::from_utf8_lossy(&bytes).into_owned();
+        let start = text.find("settings: ").expect("a settings record");
+        text[start..start + text[start..].find('\n').unwrap()].to_string()
+    };
+    assert!(record(&a).contains("Ris"), "{}", record(&a));
+    assert_eq!(record(&a), record(&single));
+    let output = merge(&[&b, &a], &merged);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        std::fs::read(&merged).unwrap() == std::fs::read(&single).unwrap(),
+        "the merged pieces differ from the single render"
+    );
+}
+
 #[test]
 fn merge_refuses_what_does_not_belong_together_naming_the_files() {
     let dir = tempfile::tempdir().unwrap();
