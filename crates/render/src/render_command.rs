@@ -89,20 +89,8 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
             .write(path)
             .map_err(|e| CommandError::Failed(e.to_string()))?;
     }
-    let mut stats = RenderStats::from_output(&output);
+    let mut stats = RenderStats::of_render(&output, counters, &plan, scene.camera.has_lens());
     stats.load_seconds = load_seconds;
-    stats.rays = counters.rays;
-    stats.shadow_rays = counters.shadow_rays;
-    stats.techniques = match &output.auto {
-        Some(pilot) => pilot.choice.settings.technique_names(),
-        None => plan.transport.technique_names(),
-    };
-    if scene.camera.has_lens() {
-        stats.techniques.push("thin-lens".to_string());
-    }
-    if output.pilot_spp > 0 {
-        stats.techniques.push("adaptive".to_string());
-    }
     if let Some(reason) = &stats.adaptive_skipped {
         eprintln!("warning: no adaptive sampling: {reason}");
     }

@@ -6,6 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::atomic_write::{WriteError, write_bytes_atomically};
 use crate::driver::RenderOutput;
+use crate::technique::RenderPlan;
+use integrators::RayCounters;
 
 /// What a render did and what it cost. Field names are part of the command-line contract.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -79,6 +81,32 @@ impl RenderStats {
             adaptive_skipped: output.adaptive_skipped.clone(),
             ..Self::default()
         }
+    }
+
+    /// The statistics of a render as `plan` said (of a scene whose camera has a lens when
+    /// `has_lens`) that made `output` and traced `counters`: [`from_output`](Self::from_output)
+    /// with the rays and the techniques that rendered it (those `auto`'s pilot chose, where it
+    /// ran), `load_seconds` left for the caller.
+    pub fn of_render(
+        output: &RenderOutput,
+        counters: RayCounters,
+        plan: &RenderPlan,
+        has_lens: bool,
+    ) -> Self {
+        let mut stats = Self::from_output(output);
+        stats.rays = counters.rays;
+        stats.shadow_rays = counters.shadow_rays;
+        stats.techniques = match &output.auto {
+            Some(pilot) => pilot.choice.settings.technique_names(),
+            None => plan.transport.technique_names(),
+        };
+        if has_lens {
+            stats.techniques.push("thin-lens".to_string());
+        }
+        if output.pilot_spp > 0 {
+            stats.techniques.push("adaptive".to_string());
+        }
+        stats
     }
 
     /// The statistics as pretty-printed JSON, fields in declaration order.
