@@ -3,6 +3,7 @@
 //! against Mitsuba 3).
 
 mod embree;
+mod generate;
 mod mitsuba_server;
 mod raycast_limit;
 mod vs_mitsuba;
