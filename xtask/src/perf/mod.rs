@@ -5,6 +5,7 @@
 mod embree;
 mod generate;
 mod mitsuba_server;
+mod noise;
 mod raycast_limit;
 mod vs_mitsuba;
 
