@@ -770,7 +770,7 @@ fn print_table(outcomes: &[Outcome], configs: &[Config]) {
             .map_or(String::new(), |c| format!("; tuned = {}", c.label))
     );
     println!(
-        "{:<16} {:>9} {:>9} {:>9} {:>9} {:>10}  {:<32} goal",
+        "{:<16} {:>9} {:>9} {:>9} {:>9} {:>10}  {:<38} goal",
         "scene", "Mitsuba", "Strata", "defaults", "tuned", "bias²/err", "auto chose"
     );
     for o in outcomes {
@@ -782,7 +782,7 @@ fn print_table(outcomes: &[Outcome], configs: &[Config]) {
             .agreement
             .map_or("-".to_string(), |a| format!("{:.1}%", 100.0 * a.share()));
         println!(
-            "{:<16} {:>9} {:>9} {:>9.3} {:>9} {:>10}  {:<32} {}",
+            "{:<16} {:>9} {:>9} {:>9.3} {:>9} {:>10}  {:<38} {}",
             o.name,
             o.mitsuba_spp,
             o.strata_spp,
