@@ -15,8 +15,10 @@
 //!   the time to trace the same rays alone, the speed-up over one thread, and Strata's rays per
 //!   second against Embree 4's on the same rays (installs `embreex` into a virtual environment
 //!   under `target/`; never run in CI).
-//! - `vs-mitsuba [SCENE ...] [--time S] [--runs N] [--variant V] [--strata-flags F]
-//!   [--mitsuba-ref SPP]`: relMSE of Strata and Mitsuba 3 at equal wall time (never in CI).
+//! - `vs-mitsuba [SCENE ...] [--no-suite] [--generate N [--seed S] [--res PIXELS]] [--time S]
+//!   [--runs N] [--by-time] [--variant V] [--strata-flags F] [--mitsuba-ref SPP]
+//!   [--strata-ref SPP]`: relMSE of Strata (its defaults and tuned flags) and Mitsuba 3 at equal
+//!   wall time, on the suite's scenes and on generated ones (never in CI).
 
 mod check;
 mod crosscheck;
@@ -29,7 +31,8 @@ use std::process::{Command, ExitCode};
 
 const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check [--quick] | \
      gains | crosscheck [--spp N] [--integrator PRESET] [SCENE.xml ...] | raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] [--no-embree] | \
-     vs-mitsuba [SCENE ...] [--time S] [--runs N] [--variant V] [--strata-flags F] [--mitsuba-ref SPP]>";
+     vs-mitsuba [SCENE ...] [--no-suite] [--generate N [--seed S] [--res PIXELS]] [--time S] [--runs N] [--by-time] \
+     [--variant V] [--strata-flags F] [--mitsuba-ref SPP] [--strata-ref SPP]>";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
