@@ -68,6 +68,7 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
                         shape: shape_index,
                         prim: u32::try_from(prim).expect("fewer than 2^32 triangles per mesh"),
                         ng,
+                        p_error: crate::triangle_point_error([p0, p1, p2]),
                     });
                     boxes.push(BvhAabb::new(
                         v[0].min(v[1]).min(v[2]),
@@ -88,6 +89,7 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
                     shape: shape_index,
                     prim: 0,
                     ng: Vec3::ZERO,
+                    p_error: crate::sphere_point_error(sphere.center, sphere.radius),
                 });
                 boxes.push(BvhAabb::new(b.min.into(), b.max.into()));
             }
