@@ -7,7 +7,7 @@
 //! image made by itself. That MIS converges to the reference integrator's image is checked by
 //! the unbiasedness tests.
 
-use super::{SuiteScene, parse_scene_list, reference_path, scene_files};
+use super::{SuiteScene, command_output, parse_scene_list, reference_path, scene_files};
 use integrators::{Mis, PathSettings};
 use render::atomic_write::write_bytes_atomically;
 use render::driver::RenderOptions;
@@ -15,7 +15,6 @@ use render::session::{film_filter, render_scene};
 use render::technique::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use std::path::Path;
-use std::process::Command;
 
 /// Sampler seed of the references (render-all's configurations use other seeds).
 pub const REFERENCE_SEED: u32 = 1000;
@@ -120,17 +119,4 @@ pub fn refs(root: &Path, args: &[String]) -> Result<bool, String> {
         );
     }
     Ok(true)
-}
-
-/// The trimmed standard output of a command, or `unknown` when it cannot run.
-fn command_output(program: &str, args: &[&str]) -> String {
-    Command::new(program)
-        .args(args)
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map_or_else(
-            || "unknown".to_string(),
-            |o| String::from_utf8_lossy(&o.stdout).trim().to_string(),
-        )
 }
