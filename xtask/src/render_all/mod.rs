@@ -1,7 +1,8 @@
 //! `cargo xtask refs` and `cargo xtask render-all`: stored high-sample references of the scene
 //! suite, and every configuration of the technique ladder rendered at a series of time budgets
-//! and measured against them.
+//! and measured against them; `cargo xtask report-check`: the report loaded in a real browser.
 
+mod browser;
 mod error_map;
 mod ladder;
 mod plot;
@@ -11,6 +12,7 @@ mod report;
 mod run;
 mod summary;
 
+pub use browser::report_check;
 pub use refs::refs;
 pub use run::render_all;
 
