@@ -172,7 +172,7 @@ fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 }
 
 /// Tick values within the log10 range `(lo, hi)`, each with its label: powers of ten over more
-/// than three decades; else 1, 2 and 5 times powers of ten, or every whole multiple when that
+/// than four decades; else 1, 2 and 5 times powers of ten, or every whole multiple when that
 /// gives fewer than three.
 pub fn ticks(lo: f64, hi: f64, unit: &str) -> Vec<(f64, String)> {
     let decades = (lo.floor() as i32)..=(hi.ceil() as i32);
@@ -185,7 +185,7 @@ pub fn ticks(lo: f64, hi: f64, unit: &str) -> Vec<(f64, String)> {
             .map(|(v, m, d)| (v, label(m, d, unit)))
             .collect()
     };
-    if hi - lo > 3.0 {
+    if hi - lo > 4.0 {
         return within(&[1]);
     }
     let sparse = within(&[1, 2, 5]);
@@ -420,7 +420,7 @@ mod tests {
         let (lo, hi) = log_range([0.21, 0.43].into_iter());
         let labels: Vec<String> = ticks(lo, hi, "s").into_iter().map(|t| t.1).collect();
         assert_eq!(labels, ["0.3 s", "0.4 s"]);
-        // Over more than three decades, powers of ten only.
+        // Over more than four decades, powers of ten only.
         let labels: Vec<String> = ticks(-10.3, -1.7, "").into_iter().map(|t| t.1).collect();
         assert_eq!(labels.len(), 9);
         assert_eq!((labels[0].as_str(), labels[8].as_str()), ("1e-10", "1e-2"));

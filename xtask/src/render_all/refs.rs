@@ -21,7 +21,7 @@ pub const REFERENCE_SEED: u32 = 1000;
 
 /// Samples per pixel of each scene's reference: about 80 s of rendering each on 2 threads, so
 /// that its own noise is a small part of the error measured at render-all's largest budget
-/// (2 s, so at most 1/40 of the reference's samples). The three scenes that `vs-mitsuba`
+/// (0.8 s, so at most 1/100 of the reference's samples). The three scenes that `vs-mitsuba`
 /// compares have four times that (2026-12-02): the Cornell box's reference at 3,680 spp carried
 /// about a tenth of the errors compared there, which pulled the ratio of the two renderers'
 /// errors towards 1.

@@ -154,7 +154,7 @@ impl SceneReport {
                 None => counts.push((record, 1)),
             }
         }
-        counts.sort_by(|a, b| b.1.cmp(&a.1));
+        counts.sort_by_key(|c| std::cmp::Reverse(c.1));
         counts
     }
 }
@@ -396,8 +396,9 @@ figure{display:inline-block;margin:4px;text-align:center;vertical-align:top;font
 figure img{image-rendering:pixelated;width:192px;display:block}\n\
 table{border-collapse:collapse;margin:8px 0}\n\
 td,th{padding:2px 8px;text-align:right;border-bottom:1px solid #ddd;vertical-align:top}\n\
-td.text,th.text{text-align:left}\n\
-td.techniques{text-align:left;font-size:small;max-width:420px}\n\
+td{white-space:nowrap}\n\
+td.text,th.text{text-align:left;white-space:normal}\n\
+td.techniques{text-align:left;font-size:small;max-width:420px;white-space:normal}\n\
 tr.flag td.auto{background:#fdd;color:#b00;font-weight:bold}\n\
 tr.best td{background:#efe}\n\
 .bad{color:#b00;font-weight:bold}\n\
@@ -792,6 +793,27 @@ mod tests {
         assert!(page.contains("pilot: path reuse 2.0"));
         assert!(page.contains("reference-technique"));
         assert!(page.contains("0123abc"));
+    }
+
+    #[test]
+    fn auto_choices_are_counted_over_seeds_most_frequent_first() {
+        let record = |seed, label: &str| AutoRecord {
+            seed,
+            label: label.to_string(),
+            techniques: vec![label.to_string()],
+            reason: String::new(),
+        };
+        let mut r = report("s", &[AUTO], vec![measurement(AUTO, 1.0, 1, 0.1)]);
+        r.auto_choices = vec![record(7, "base"), record(8, "+ris"), record(9, "+ris")];
+        let counts: Vec<(&str, usize)> = r
+            .auto_choice_counts()
+            .into_iter()
+            .map(|(record, n)| (record.label.as_str(), n))
+            .collect();
+        assert_eq!(counts, [("+ris", 2), ("base", 1)]);
+        let text = auto_choice_text(&r);
+        assert!(text.starts_with("<b>+ris</b> (2 of 3 seeds)"), "{text}");
+        assert!(text.contains("<b>base</b> (1 of 3 seeds)"), "{text}");
     }
 
     #[test]
