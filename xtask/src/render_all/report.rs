@@ -393,7 +393,7 @@ window.addEventListener('load', function () {\n\
 const STYLE: &str = "<style>\n\
 body{font-family:sans-serif;max-width:1400px;margin:0 auto;padding:0 12px}\n\
 figure{display:inline-block;margin:4px;text-align:center;vertical-align:top;font-size:small}\n\
-figure img{image-rendering:pixelated;width:192px;display:block}\n\
+figure img{image-rendering:pixelated;width:192px;display:block;border:1px solid #888}\n\
 table{border-collapse:collapse;margin:8px 0}\n\
 td,th{padding:2px 8px;text-align:right;border-bottom:1px solid #ddd;vertical-align:top}\n\
 td{white-space:nowrap}\n\
