@@ -4,6 +4,8 @@
 //!   `scenes/refs/`.
 //! - `render-all [--quick] [--scenes A,B]`: every technique configuration of each scene at a
 //!   series of time budgets, measured against the stored references; report in `target/report/`.
+//! - `report-check`: load `target/report/index.html` in headless Chromium; fail on a broken image
+//!   or a console message; keep a screenshot at `target/report/screenshot.png`.
 //! - `check [--quick]`: the statistical and stiff-case checks (the workspace's tests, with the
 //!   slow ones that `cargo test` skips unless `--quick`), one pass/fail line each with its figures.
 //! - `gains`: what each technique buys on the scene built to show it, one pass/fail line per
@@ -29,7 +31,7 @@ mod render_all;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check [--quick] | \
+const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | report-check | check [--quick] | \
      gains | crosscheck [--spp N] [--integrator PRESET] [SCENE.xml ...] | raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] [--no-embree] | \
      vs-mitsuba [SCENE ...] [--no-suite] [--generate N [--seed S] [--res PIXELS]] [--time S] [--runs N] [--by-time] \
      [--variant V] [--strata-flags F] [--mitsuba-ref SPP] [--strata-ref SPP]>";
@@ -39,6 +41,7 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("refs") => render_all::refs(&workspace_root(), &args[1..]),
         Some("render-all") => render_all::render_all(&workspace_root(), &args[1..]),
+        Some("report-check") => render_all::report_check(&workspace_root(), &args[1..]),
         Some("check") => check::check(&workspace_root(), &args[1..]),
         Some("crosscheck") => crosscheck(&args[1..]),
         Some("gains") => gains::gains(&workspace_root()),
