@@ -314,7 +314,10 @@ fn render_adaptive<T: RayTally + Default + Send>(
         ..*plan
     };
     let image_options = RenderOptions {
-        allocation: Some(Arc::new(Allocation::from_pilot(&pilot.film, &costs))),
+        allocation: Some(Arc::new(match reuse_block(plan) {
+            Some(block) => Allocation::from_pilot(&pilot.film, &costs).blockwise(block),
+            None => Allocation::from_pilot(&pilot.film, &costs),
+        })),
         ..options.clone()
     };
     let mut output = render_sampled(&Context::new(
@@ -330,6 +333,14 @@ fn render_adaptive<T: RayTally + Default + Send>(
     output.passes += pilot.passes;
     output.non_finite.merge(pilot.non_finite);
     Ok(output)
+}
+
+/// The block edge of `plan`'s path reuse, if it reuses paths.
+fn reuse_block(plan: &RenderPlan) -> Option<u32> {
+    match plan.transport {
+        Transport::Path(settings) => settings.path_reuse.map(|reuse| reuse.block),
+        Transport::Reference(_) => None,
+    }
 }
 
 /// Path vertices whose sampler dimensions come from the sampler's pattern (with the camera's);
