@@ -1,12 +1,14 @@
 """Renders one Mitsuba 3 scene repeatedly for `cargo xtask vs-mitsuba`, timing each render.
 
 usage: python3 mitsuba_server.py SCENE.xml VARIANT
+       python3 mitsuba_server.py --check VARIANT SCENE.xml ...
 
 Loads the scene, renders once to warm up (the first render of a JIT variant compiles its
 kernels), prints "ready", then reads lines "SPP SEED OUT.exr" from standard input and for each
 prints the wall-clock seconds of the render alone (loading and writing excluded) once OUT.exr
-(linear RGB float32) is written. Needs `pip install mitsuba`; `llvm_ad_rgb` needs libLLVM
-(DRJIT_LIBLLVM_PATH).
+(linear RGB float32) is written. With --check, loads each scene without rendering and exits with
+status 1 at the first that fails, naming it on standard error. Needs `pip install mitsuba`;
+`llvm_ad_rgb` needs libLLVM (DRJIT_LIBLLVM_PATH).
 """
 import sys
 import time
@@ -23,7 +25,20 @@ def render(scene, spp, seed):
     return image, time.perf_counter() - start
 
 
+def check(variant, paths):
+    mi.set_variant(variant)
+    for path in paths:
+        try:
+            mi.load_file(path)
+        except Exception as error:  # Mitsuba raises plain exceptions for scene errors.
+            print(f"{path}: Mitsuba cannot load it: {error}", file=sys.stderr)
+            sys.exit(1)
+
+
 def main():
+    if sys.argv[1] == "--check":
+        check(sys.argv[2], sys.argv[3:])
+        return
     scene_path, variant = sys.argv[1], sys.argv[2]
     mi.set_variant(variant)
     scene = mi.load_file(scene_path)

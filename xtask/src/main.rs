@@ -4,6 +4,8 @@
 //!   `scenes/refs/`.
 //! - `render-all [--quick] [--scenes A,B]`: every technique configuration of each scene at a
 //!   series of time budgets, measured against the stored references; report in `target/report/`.
+//! - `report-check`: load `target/report/index.html` in headless Chromium; fail on a broken image
+//!   or a console message; keep a screenshot at `target/report/screenshot.png`.
 //! - `check [--quick]`: the statistical and stiff-case checks (the workspace's tests, with the
 //!   slow ones that `cargo test` skips unless `--quick`), one pass/fail line each with its figures.
 //! - `gains`: what each technique buys on the scene built to show it, one pass/fail line per
@@ -15,8 +17,10 @@
 //!   the time to trace the same rays alone, the speed-up over one thread, and Strata's rays per
 //!   second against Embree 4's on the same rays (installs `embreex` into a virtual environment
 //!   under `target/`; never run in CI).
-//! - `vs-mitsuba [SCENE ...] [--time S] [--runs N] [--variant V] [--strata-flags F]
-//!   [--mitsuba-ref SPP]`: relMSE of Strata and Mitsuba 3 at equal wall time (never in CI).
+//! - `vs-mitsuba [SCENE ...] [--no-suite] [--generate N [--seed S] [--res PIXELS]] [--time S]
+//!   [--runs N] [--by-time] [--variant V] [--strata-flags F] [--mitsuba-ref SPP]
+//!   [--strata-ref SPP]`: relMSE of Strata (its defaults and tuned flags) and Mitsuba 3 at equal
+//!   wall time, on the suite's scenes and on generated ones (never in CI).
 
 mod check;
 mod crosscheck;
@@ -27,15 +31,17 @@ mod render_all;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
-const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | check [--quick] | \
+const USAGE: &str = "usage: cargo xtask <refs [--scenes A,B] | render-all [--quick] [--scenes A,B] | report-check | check [--quick] | \
      gains | crosscheck [--spp N] [--integrator PRESET] [SCENE.xml ...] | raycast-limit [SCENE] [--spp N] [--threads N] [--runs N] [--no-embree] | \
-     vs-mitsuba [SCENE ...] [--time S] [--runs N] [--variant V] [--strata-flags F] [--mitsuba-ref SPP]>";
+     vs-mitsuba [SCENE ...] [--no-suite] [--generate N [--seed S] [--res PIXELS]] [--time S] [--runs N] [--by-time] \
+     [--variant V] [--strata-flags F] [--mitsuba-ref SPP] [--strata-ref SPP]>";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("refs") => render_all::refs(&workspace_root(), &args[1..]),
         Some("render-all") => render_all::render_all(&workspace_root(), &args[1..]),
+        Some("report-check") => render_all::report_check(&workspace_root(), &args[1..]),
         Some("check") => check::check(&workspace_root(), &args[1..]),
         Some("crosscheck") => crosscheck(&args[1..]),
         Some("gains") => gains::gains(&workspace_root()),

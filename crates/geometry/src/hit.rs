@@ -9,6 +9,10 @@ pub struct Hit {
     pub t: f32,
     /// Hit point in world space, on the surface (re-projected, not `origin + t * dir`).
     pub p: Vec3,
+    /// A bound on the rounding error of each coordinate of `p` (world units): the exact surface
+    /// point lies within `p ± p_error`. Rays leaving `p` start that far off the surface
+    /// ([`crate::offset_ray_origin`]).
+    pub p_error: Vec3,
     /// Unit geometric normal as the shape defines it: for a mesh triangle `(p1 - p0) x (p2 - p0)`,
     /// for a sphere outward (inward with `flip_normals`). Never flipped towards the ray.
     pub ng: Vec3,

@@ -12,9 +12,12 @@
 //! - BVH boxes are tested with a conservative error margin and a lower bound of `t = 0` (obvhs' own
 //!   CWBVH box test uses a fixed lower bound of `1e-4`, which misses nearby surfaces of small
 //!   scenes);
-//! - secondary rays leave surfaces through [`offset_ray_origin`] (Wächter and Binder 2019,
-//!   Ray Tracing Gems ch. 6), see [`Ray::spawn`] and [`Ray::spawn_to`], and [`SpawnPoint`] for a
-//!   point that spawns several rays.
+//! - every hit point carries a bound on its coordinates' rounding error ([`Hit::p_error`]), and
+//!   secondary rays leave surfaces through [`offset_ray_origin`], which moves the point along the
+//!   normal by that bound (pbrt-v4's `OffsetRayOrigin`): offsets scale with the scene, however
+//!   small or far from the origin; see [`Ray::spawn`] and [`Ray::spawn_to`], and [`SpawnPoint`]
+//!   for a point that spawns several rays. Hits closer than the error bound of their own `t`
+//!   are not hits.
 //!
 //! Shapes are never flipped towards the ray: a [`Hit`] reports the geometric normal as the shape
 //! defines it, and one-sidedness is the BSDF's business (Mitsuba's convention).
@@ -57,8 +60,8 @@ pub use aabb::Aabb;
 pub use accel::Accel;
 pub use hit::Hit;
 pub use mesh::{MeshError, TriangleMesh};
-pub use offset::offset_ray_origin;
-pub use ray::Ray;
+pub use offset::{gamma, offset_ray_origin, sphere_point_error, triangle_point_error};
+pub use ray::{Ray, SHADOW_EPSILON};
 pub use shape::Shape;
 pub use spawn_point::SpawnPoint;
 pub use sphere::Sphere;

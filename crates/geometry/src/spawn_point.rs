@@ -9,6 +9,7 @@ use crate::offset::offset_both_sides;
 /// [`crate::offset_ray_origin`] moves it for a ray leaving it (which depends on the direction only
 /// through the side): for a path vertex that spawns a shadow ray and the next ray, or that other
 /// paths connect to. Its rays are bit for bit those of [`Ray::spawn`] and [`Ray::spawn_to`].
+/// How far it moves is its coordinates' error bound along the normal: see [`crate::Hit::p_error`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpawnPoint {
     /// Position on the surface (world units).
@@ -22,10 +23,11 @@ pub struct SpawnPoint {
 }
 
 impl SpawnPoint {
-    /// The surface point `p` with unit geometric normal `ng`.
+    /// The surface point `p` with unit geometric normal `ng`, each coordinate within `p_error`
+    /// of the exact surface point (world units).
     #[inline]
-    pub fn new(p: Vec3, ng: Vec3) -> Self {
-        let (front, back) = offset_both_sides(p, ng);
+    pub fn new(p: Vec3, ng: Vec3, p_error: Vec3) -> Self {
+        let (front, back) = offset_both_sides(p, ng, p_error);
         Self { p, ng, front, back }
     }
 
@@ -62,11 +64,11 @@ impl SpawnPoint {
     }
 
     /// [`Ray::spawn_to`] from this point to `target_p` (unit geometric normal `target_ng`, zero
-    /// for a point light): the shadow ray and its `t_max`.
+    /// for a point light; coordinate error bound `target_error`): the shadow ray and its `t_max`.
     #[inline(always)]
-    pub fn spawn_to(&self, target_p: Vec3, target_ng: Vec3) -> (Ray, f32) {
+    pub fn spawn_to(&self, target_p: Vec3, target_ng: Vec3, target_error: Vec3) -> (Ray, f32) {
         let to_target = target_p - self.p;
-        let end = crate::offset_ray_origin(target_p, target_ng, -to_target);
+        let end = crate::offset_ray_origin(target_p, target_ng, target_error, -to_target);
         Ray::between(self.origin_towards(to_target), end, to_target, self.ng)
     }
 }
@@ -76,38 +78,41 @@ mod tests {
     use super::*;
     use crate::test_rng::TestRng;
 
-    /// Points near and far from the origin, unit normals, and directions that include the
-    /// tangent plane (`dir · ng` exactly zero) and both sides.
-    fn cases() -> Vec<(Vec3, Vec3, Vec3)> {
+    /// Points near and far from the origin with error bounds of their size, unit normals, and
+    /// directions that include the tangent plane (`dir · ng` exactly zero) and both sides.
+    fn cases() -> Vec<(Vec3, Vec3, Vec3, Vec3)> {
         let mut rng = TestRng(7);
         let mut cases = Vec::new();
         for scale in [1e-3, 0.02, 1.0, 40.0, 3e4] {
             for _ in 0..200 {
                 let p = scale * rng.vec();
+                let e = crate::gamma(7.0) * scale * rng.vec().abs();
                 let ng = rng.vec().normalize();
                 let dir = rng.vec();
-                cases.push((p, ng, dir));
-                cases.push((p, ng, -dir));
-                cases.push((p, ng, ng.any_orthonormal_vector()));
+                cases.push((p, ng, e, dir));
+                cases.push((p, ng, e, -dir));
+                cases.push((p, ng, e, ng.any_orthonormal_vector()));
             }
         }
-        cases.push((Vec3::ZERO, Vec3::Z, Vec3::X));
+        let e = Vec3::splat(1e-7);
+        cases.push((Vec3::ZERO, Vec3::Z, e, Vec3::X));
         cases.push((
             Vec3::new(1e4, -3.0, 7.0),
             Vec3::Y,
+            1e4 * e,
             Vec3::new(1.0, 0.0, -2.0),
         ));
-        cases.push((Vec3::new(-0.0, 5.0, 0.0), Vec3::NEG_Y, Vec3::Y));
+        cases.push((Vec3::new(-0.0, 5.0, 0.0), Vec3::NEG_Y, e, Vec3::Y));
         cases
     }
 
     #[test]
     fn rays_are_bit_for_bit_those_of_ray_spawn_and_spawn_to() {
         let mut tangent = 0;
-        for (p, ng, dir) in cases() {
-            let point = SpawnPoint::new(p, ng);
+        for (p, ng, e, dir) in cases() {
+            let point = SpawnPoint::new(p, ng, e);
             let what = format!("p {p:?}, ng {ng:?}, dir {dir:?}");
-            assert_eq!(point.spawn(dir), Ray::spawn(p, ng, dir), "spawn: {what}");
+            assert_eq!(point.spawn(dir), Ray::spawn(p, ng, e, dir), "spawn: {what}");
             let unit = dir.normalize();
             let kept = point.spawn_unit(unit);
             assert_eq!(kept.dir, unit, "spawn_unit changed the direction: {what}");
@@ -117,8 +122,8 @@ mod tests {
             }
             let target = p + 3.0 * dir;
             assert_eq!(
-                point.spawn_to(target, -ng),
-                Ray::spawn_to(p, ng, target, -ng),
+                point.spawn_to(target, -ng, 2.0 * e),
+                Ray::spawn_to(p, ng, e, target, -ng, 2.0 * e),
                 "spawn_to: {what}"
             );
             tangent += usize::from(ng.dot(dir) == 0.0);
@@ -128,16 +133,16 @@ mod tests {
 
     #[test]
     fn the_two_sides_are_offset_ray_origin_to_either_side() {
-        for (p, ng, _) in cases() {
-            let point = SpawnPoint::new(p, ng);
+        for (p, ng, e, _) in cases() {
+            let point = SpawnPoint::new(p, ng, e);
             assert_eq!(
                 point.front,
-                crate::offset_ray_origin(p, ng, ng),
+                crate::offset_ray_origin(p, ng, e, ng),
                 "front at {p:?}"
             );
             assert_eq!(
                 point.back,
-                crate::offset_ray_origin(p, ng, -ng),
+                crate::offset_ray_origin(p, ng, e, -ng),
                 "back at {p:?}"
             );
             assert!((point.front - p).dot(ng) > 0.0 && (point.back - p).dot(ng) < 0.0);

@@ -60,6 +60,12 @@ impl SphereGeom {
     /// Ray Tracing Gems ch. 7: the discriminant comes from the vector from the centre to the
     /// ray's closest approach, not from `b^2 - c`, so a small sphere far from the origin keeps its
     /// precision; the two roots come from the stable `q`, `c / q` pair.
+    ///
+    /// `c / q` is the root nearer zero, and its sign is the sign of `c = |oc|² − r²` (over `q`'s):
+    /// whether the origin lies outside the sphere. Where `|c|` is within its rounding error,
+    /// `γ(6) (|oc|² + r²)`, the origin is on the surface within rounding (a ray spawned from it,
+    /// moved off by its error bound), and that root is no hit, as pbrt-v4 tests the lower bound
+    /// of its interval `t`.
     #[inline(always)]
     pub fn intersect(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> Option<f32> {
         let oc = origin - self.center;
@@ -70,12 +76,12 @@ impl SphereGeom {
         if discriminant < 0.0 {
             return None;
         }
-        let c = oc.length_squared() - r2;
+        let oc2 = oc.length_squared();
+        let c = oc2 - r2;
         let q = -(b + discriminant.sqrt().copysign(b));
-        let (t0, t1) = {
-            let (a, b) = (c / q, q);
-            if a < b { (a, b) } else { (b, a) }
-        };
+        let on_surface = c.abs() <= crate::gamma(6.0) * (oc2 + r2);
+        let near = if on_surface { f32::NEG_INFINITY } else { c / q };
+        let (t0, t1) = if near < q { (near, q) } else { (q, near) };
         if t0 > 0.0 && t0 < t_max {
             Some(t0)
         } else if t1 > 0.0 && t1 < t_max {

@@ -221,8 +221,9 @@ fn intersect_f64(
     })
 }
 
-/// `n u / (1 - n u)` with `u = 2^-24`: the relative error bound of `n` rounded operations.
-const fn gamma(n: f32) -> f32 {
+/// `n u / (1 - n u)` with `u = 2^-24`: the relative error bound of `n` rounded `f32` operations
+/// (pbrt's `gamma`).
+pub const fn gamma(n: f32) -> f32 {
     let u = f32::EPSILON * 0.5;
     n * u / (1.0 - n * u)
 }

@@ -123,7 +123,7 @@ pub struct Rayx4 {
 
 impl Rayx4 {
     /// [`crate::Ray::between`] lane by lane: the shadow rays from `origin` to `end` and their
-    /// `t_max`, where `to_target` is each lane's direction between the unmoved points; direction
+    /// `t_max` (short of `end` by [`crate::SHADOW_EPSILON`] of the distance), where `to_target` is each lane's direction between the unmoved points; direction
     /// `fallback` and `t_max = 0` where the moved points coincide or pass each other.
     #[inline]
     pub fn between(
@@ -143,7 +143,11 @@ impl Rayx4 {
                 origin: *origin,
                 dir: Vec3x4::select(forward, &d.divided_by(distance), fallback),
             },
-            Vec4::select(forward, distance, Vec4::ZERO),
+            Vec4::select(
+                forward,
+                distance * (1.0 - crate::SHADOW_EPSILON),
+                Vec4::ZERO,
+            ),
         )
     }
 
@@ -171,23 +175,32 @@ mod tests {
     use super::*;
     use crate::test_rng::TestRng;
 
-    /// Pairs of surface points: random ones near and far from the origin, coincident ones, ones
-    /// a few ulps apart (whose offset points pass each other), and tangent ones.
-    fn pairs() -> Vec<(SpawnPoint, SpawnPoint)> {
+    /// A surface point at `p` with unit normal `n` and an error bound of a few ulps of `p`,
+    /// and that bound.
+    fn point(p: Vec3, n: Vec3) -> (SpawnPoint, Vec3) {
+        let e = crate::gamma(7.0) * p.abs();
+        (SpawnPoint::new(p, n, e), e)
+    }
+
+    /// Pairs of surface points (with their error bounds): random ones near and far from the
+    /// origin, coincident ones, ones a few ulps apart (whose offset points pass each other), and
+    /// tangent ones.
+    #[allow(clippy::type_complexity)]
+    fn pairs() -> Vec<((SpawnPoint, Vec3), (SpawnPoint, Vec3))> {
         let mut rng = TestRng(11);
         let mut pairs = Vec::new();
         for scale in [1e-3, 0.02, 1.0, 40.0, 3e4] {
             for _ in 0..100 {
                 let (p, q) = (scale * rng.vec(), scale * rng.vec());
                 let (n, m) = (rng.vec().normalize(), rng.vec().normalize());
-                pairs.push((SpawnPoint::new(p, n), SpawnPoint::new(q, m)));
-                pairs.push((SpawnPoint::new(p, n), SpawnPoint::new(p, -n)));
+                pairs.push((point(p, n), point(q, m)));
+                pairs.push((point(p, n), point(p, -n)));
                 let next = Vec3::new(f32::from_bits(p.x.to_bits() + 3), p.y, p.z);
-                pairs.push((SpawnPoint::new(p, n), SpawnPoint::new(next, m)));
+                pairs.push((point(p, n), point(next, m)));
             }
         }
         let (p, n) = (Vec3::new(2.0, 1.0, -3.0), Vec3::Z);
-        pairs.push((SpawnPoint::new(p, n), SpawnPoint::new(p + Vec3::X, n)));
+        pairs.push((point(p, n), point(p + Vec3::X, n)));
         pairs
     }
 
@@ -198,7 +211,7 @@ mod tests {
         for group in pairs.chunks(4) {
             let (mut from, mut to) = (SpawnPointx4::default(), SpawnPointx4::default());
             let mut to_target = Vec3x4::default();
-            for (lane, (a, b)) in group.iter().enumerate() {
+            for (lane, ((a, _), (b, _))) in group.iter().enumerate() {
                 from.set_lane(lane, a);
                 to.set_lane(lane, b);
                 to_target.set_lane(lane, b.p - a.p);
@@ -207,8 +220,8 @@ mod tests {
             let end = to.origins_towards(-to.ng.dot(&to_target));
             let (rays, t_max) = Rayx4::between(&origin, &end, &to_target, &from.ng);
             let lanes = rays.lanes(t_max);
-            for (lane, (a, b)) in group.iter().enumerate() {
-                let (expected, expected_t_max) = a.spawn_to(b.p, b.ng);
+            for (lane, ((a, _), (b, b_error))) in group.iter().enumerate() {
+                let (expected, expected_t_max) = a.spawn_to(b.p, b.ng, *b_error);
                 let what = format!("lane {lane}: {a:?} to {b:?}");
                 assert_eq!(t_max.to_array()[lane], expected_t_max, "{what}");
                 let (wide_origin, wide_dir, wide_t_max) = lanes[lane];

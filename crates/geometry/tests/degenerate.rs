@@ -183,7 +183,7 @@ fn shading_normals_fall_back_and_follow_the_geometric_side() {
         "zero normals fall back to ng"
     );
     assert!(accel.uv(&top).abs_diff_eq(Vec2::new(0.2, 0.3), 1e-6));
-    let below = Ray::spawn(top.p, top.ng, Vec3::NEG_Z);
+    let below = Ray::spawn(top.p, top.ng, top.p_error, Vec3::NEG_Z);
     let bottom = accel
         .intersect(&below, f32::INFINITY)
         .expect("bottom triangle");

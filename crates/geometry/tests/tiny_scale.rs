@@ -1,5 +1,7 @@
 //! A scene scaled by 1e-3, where surfaces lie 5e-5 from the ray origin. obvhs' own CWBVH box
-//! test starts every box at `t = 1e-4` and would miss all of these.
+//! test starts every box at `t = 1e-4` and would miss all of these. And the same scene scaled by
+//! 1e-4 with a gap of 1e-7, a thousandth of its size, which a fixed offset near the origin (the
+//! 1.5e-5 of Wächter and Binder's `float_scale`) would jump.
 
 mod common;
 
@@ -12,11 +14,17 @@ const GAP: f32 = 5e-5;
 
 /// A cube of half-size 1e-3 at the origin and, `GAP` above its top face, a facing 2e-3 square.
 fn scene() -> Accel {
-    let cube = transformed(&subdivided_cube(3), SCALE, Vec3::ZERO);
-    let z = SCALE + GAP;
+    scene_of(SCALE, GAP)
+}
+
+/// A cube of half-size `scale` at the origin and, `gap` above its top face, a facing square of
+/// side `2 scale`.
+fn scene_of(scale: f32, gap: f32) -> Accel {
+    let cube = transformed(&subdivided_cube(3), scale, Vec3::ZERO);
+    let z = scale + gap;
     let lid = TriangleMesh::new(
         [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-            .map(|(x, y)| Vec3::new(x * SCALE, y * SCALE, z))
+            .map(|(x, y)| Vec3::new(x * scale, y * scale, z))
             .to_vec(),
         None,
         None,
@@ -81,35 +89,45 @@ fn oblique_rays_hit_faces_5e5_away() {
 
 #[test]
 fn spawned_rays_cross_a_5e5_gap() {
-    let seed = 10;
+    spawned_rays_cross(SCALE, GAP, 10);
+}
+
+#[test]
+fn spawned_rays_cross_a_thousandth_of_a_scene_scaled_by_1e_minus_4() {
+    spawned_rays_cross(1e-4, 1e-7, 11);
+}
+
+/// Rays through the lid of [`scene_of`] onto the cube, spawned from the lid, and back up,
+/// spawned from the cube, meet the next surface across the gap.
+fn spawned_rays_cross(scale: f32, gap: f32, seed: u64) {
     let mut rng = Pcg32::new(seed);
-    let accel = scene();
+    let accel = scene_of(scale, gap);
     for i in 0..2000 {
         let from = Vec3::new(
-            rng.range(-0.8, 0.8) * SCALE,
-            rng.range(-0.8, 0.8) * SCALE,
-            3.0 * SCALE,
+            rng.range(-0.8, 0.8) * scale,
+            rng.range(-0.8, 0.8) * scale,
+            3.0 * scale,
         );
         let down = Ray::new(from, Vec3::new(0.0, 0.0, -1.0) + 0.05 * rng.in_cube());
-        let replay = format!("seed {seed}, ray {i}: {down:?}");
+        let replay = format!("scale {scale}, gap {gap}, seed {seed}, ray {i}: {down:?}");
         // Through the lid (from above, its back) onto the cube's top face.
         let lid = accel
             .intersect(&down, f32::INFINITY)
             .unwrap_or_else(|| panic!("{replay}: missed the lid"));
         assert_eq!(lid.shape, 1, "{replay}");
-        let below = Ray::spawn(lid.p, lid.ng, down.dir);
+        let below = Ray::spawn(lid.p, lid.ng, lid.p_error, down.dir);
         let top = accel
             .intersect(&below, f32::INFINITY)
             .unwrap_or_else(|| panic!("{replay}: missed the cube"));
         assert_eq!((top.shape, top.ng), (0, Vec3::Z), "{replay}");
         // Bounce straight back up: the lid is the next surface, less than the gap away.
-        let up = Ray::spawn(top.p, top.ng, Vec3::Z);
+        let up = Ray::spawn(top.p, top.ng, top.p_error, Vec3::Z);
         let back = accel
             .intersect(&up, f32::INFINITY)
             .unwrap_or_else(|| panic!("{replay}: missed the lid again"));
         assert_eq!(back.shape, 1, "{replay}");
         assert!(
-            back.t > 0.0 && back.t < GAP,
+            back.t > 0.0 && back.t < gap,
             "{replay}: lid at t = {}",
             back.t
         );

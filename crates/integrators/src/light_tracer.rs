@@ -123,7 +123,7 @@ impl LightTracer {
         // The light the path carries is `emitted_weight * throughput`.
         let emitted_weight = emitted.weight / pmf;
         let mut throughput = Vec3::ONE;
-        let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.dir);
+        let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.p_error, emitted.dir);
         // The vertex about to be found, counted from the light (1 = the first hit). A connection
         // at vertex j makes a path of j + 1 vertices after the camera (j of them, and the light).
         let mut vertex = 1;
@@ -182,7 +182,7 @@ impl LightTracer {
                 return;
             }
             vertex += 1;
-            ray = Ray::spawn(surface.hit.p, ng, outgoing);
+            ray = Ray::spawn(surface.hit.p, ng, surface.hit.p_error, outgoing);
         }
     }
 }
@@ -207,7 +207,7 @@ fn connect_to_camera(
     let cos_light_geometric = ng.dot(towards_light).abs();
     if f == Vec3::ZERO
         || cos_light_geometric <= 0.0
-        || !world.unoccluded(surface.hit.p, ng, camera.target, Vec3::ZERO, tally)
+        || !world.unoccluded(&surface.hit, camera.target, tally)
     {
         return;
     }

@@ -253,7 +253,7 @@ impl PathIntegrator {
                 break;
             }
             let wo = surface.frame.to_local(-ray.dir);
-            let point = SpawnPoint::new(surface.hit.p, surface.hit.ng);
+            let point = SpawnPoint::new(surface.hit.p, surface.hit.ng, surface.hit.p_error);
             if REUSE {
                 if depth == 1 {
                     first = FirstVertex::at(surface, &point, wo);

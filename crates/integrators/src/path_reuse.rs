@@ -214,18 +214,24 @@ mod tests {
         path_from(own, (x, Vec3::Z), second)
     }
 
+    /// The error bound test points are given: a few units in the last place of `p`'s
+    /// coordinates, as a hit's.
+    fn error(p: Vec3) -> Vec3 {
+        geometry::gamma(7.0) * p.abs()
+    }
+
     /// [`path`] with the first vertex's normal given too (seen along it).
     fn path_from(own: f32, x: (Vec3, Vec3), second: Option<(Vec3, Vec3)>) -> ReusablePath {
         ReusablePath {
             own: Vec3::splat(own),
             first: Some(FirstVertex {
-                point: SpawnPoint::new(x.0, x.1),
+                point: SpawnPoint::new(x.0, x.1, error(x.0)),
                 n: x.1,
                 faces_camera: true,
                 albedo: ALBEDO,
             }),
             second: second.map(|(p, n)| SecondVertex {
-                point: SpawnPoint::new(p, n),
+                point: SpawnPoint::new(p, n, error(p)),
                 ns: n,
                 reflected: REFLECTED,
             }),
@@ -338,7 +344,7 @@ mod tests {
         let mut rays = 0;
         for (q, n) in seconds.into_iter().flat_map(|(q, n)| [(q, n), (q, -n)]) {
             let y = SecondVertex {
-                point: SpawnPoint::new(q, n),
+                point: SpawnPoint::new(q, n, error(q)),
                 ns: n,
                 reflected: REFLECTED,
             };
@@ -351,7 +357,7 @@ mod tests {
                 .collect::<Vec<_>>();
             for (k, &(p, ng)) in firsts.iter().enumerate() {
                 let (origin, dir, t_max) = groups[k / 4][k % 4];
-                let (expected, expected_t_max) = Ray::spawn_to(p, ng, q, n);
+                let (expected, expected_t_max) = Ray::spawn_to(p, ng, error(p), q, n, error(q));
                 let what = format!("from {p} (normal {ng}) to {q} (normal {n})");
                 assert_eq!(Vec3::from(origin), expected.origin, "origin {what}");
                 assert_eq!(Vec3::from(dir), expected.dir, "direction {what}");

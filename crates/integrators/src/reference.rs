@@ -82,7 +82,7 @@ pub fn radiance(
         if last && !(settings.skip_null_vertices && surface.bsdf.has_null_lobe()) {
             break;
         }
-        let point = SpawnPoint::new(surface.hit.p, surface.hit.ng);
+        let point = SpawnPoint::new(surface.hit.p, surface.hit.ng, surface.hit.p_error);
         let wo = surface.frame.to_local(-ray.dir);
 
         let first_direct = settings.direct_samples.filter(|_| depth == 1);

@@ -412,7 +412,7 @@ impl World {
                 return Some(self.surface(hit, ray.dir, slot));
             }
             // Mitsuba's rays past an emitter are not clipped again.
-            ray = Ray::spawn(hit.p, hit.ng, ray.dir);
+            ray = Ray::spawn(hit.p, hit.ng, hit.p_error, ray.dir);
             t_max = f32::INFINITY;
         }
     }
@@ -436,18 +436,12 @@ impl World {
         !self.accel.occluded_wide(origin, dir, t_max)
     }
 
-    /// True when nothing blocks the segment from the surface point `p` (geometric normal `ng`)
-    /// to `p_light` (normal `n_light`, zero for points), told to `tally` as one shadow ray.
+    /// True when nothing blocks the segment from the surface point `hit` to the point `target`,
+    /// which lies on no surface (a camera's lens point), told to `tally` as one shadow ray.
     #[inline(always)]
-    pub fn unoccluded(
-        &self,
-        p: Vec3,
-        ng: Vec3,
-        p_light: Vec3,
-        n_light: Vec3,
-        tally: &mut impl RayTally,
-    ) -> bool {
-        let (ray, distance) = Ray::spawn_to(p, ng, p_light, n_light);
+    pub fn unoccluded(&self, hit: &Hit, target: Vec3, tally: &mut impl RayTally) -> bool {
+        let (ray, distance) =
+            Ray::spawn_to(hit.p, hit.ng, hit.p_error, target, Vec3::ZERO, Vec3::ZERO);
         self.ray_unoccluded(&ray, distance, tally)
     }
 
@@ -505,7 +499,7 @@ impl World {
 #[inline(always)]
 pub(crate) fn shadow_ray(point: &SpawnPoint, sample: &LightSample) -> (Ray, f32) {
     if sample.distance.is_finite() {
-        point.spawn_to(sample.p_light, sample.n_light)
+        point.spawn_to(sample.p_light, sample.n_light, sample.p_light_error)
     } else {
         (point.spawn(sample.wi), f32::INFINITY)
     }

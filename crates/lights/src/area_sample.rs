@@ -5,13 +5,15 @@ use crate::pdf_area_to_solid_angle;
 use crate::sample::LightSample;
 use glam::Vec3;
 
-/// The light sample for the surface point `p_light` (unit normal `n_light`, emitting towards
-/// it), chosen with density `pdf_area` per unit area, seen from `p`. `None` when the point
-/// faces away from `p`, coincides with it, or the density is not finite.
+/// The light sample for the surface point `p_light` (coordinate error bound `p_light_error`,
+/// unit normal `n_light`, emitting towards it), chosen with density `pdf_area` per unit area,
+/// seen from `p`. `None` when the point faces away from `p`, coincides with it, or the density
+/// is not finite.
 #[inline]
 pub(crate) fn area_sample_towards(
     p: Vec3,
     p_light: Vec3,
+    p_light_error: Vec3,
     n_light: Vec3,
     pdf_area: f32,
     radiance: Vec3,
@@ -36,6 +38,7 @@ pub(crate) fn area_sample_towards(
         distance,
         pdf_solid_angle,
         p_light,
+        p_light_error,
         n_light,
         is_delta: false,
     })

@@ -44,6 +44,7 @@ impl DirectionalLight {
             distance: f32::INFINITY,
             pdf_solid_angle: 1.0,
             p_light: p + wi,
+            p_light_error: Vec3::ZERO,
             n_light: Vec3::ZERO,
             is_delta: true,
         }

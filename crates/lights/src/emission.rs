@@ -12,6 +12,9 @@ use std::f32::consts::PI;
 pub struct EmissionSample {
     /// The point on the emitter, world space.
     pub p: Vec3,
+    /// A bound on the rounding error of each coordinate of `p` (world units), which the ray
+    /// leaving it is moved off the emitter by.
+    pub p_error: Vec3,
     /// The unit geometric normal on the emitting side.
     pub n: Vec3,
     /// The unit direction the light leaves in (on the side of `n`).
@@ -22,11 +25,13 @@ pub struct EmissionSample {
 }
 
 /// The emission sample of a Lambertian emitter of `radiance` and total `area` (world units²)
-/// at the point `p` with emitting normal `n`, chosen uniformly by area, with `u_dir` for the
-/// cosine-distributed direction: the weight is Lₑ · π · area.
+/// at the point `p` (coordinate error bound `p_error`) with emitting normal `n`, chosen
+/// uniformly by area, with `u_dir` for the cosine-distributed direction: the weight is
+/// Lₑ · π · area.
 #[inline]
 pub(crate) fn lambertian_emission(
     p: Vec3,
+    p_error: Vec3,
     n: Vec3,
     radiance: Vec3,
     area: f32,
@@ -38,6 +43,7 @@ pub(crate) fn lambertian_emission(
     }
     Some(EmissionSample {
         p,
+        p_error,
         n,
         dir: Frame::from_normal(n).to_world(local).normalize(),
         weight: radiance * (PI * area),

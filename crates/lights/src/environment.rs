@@ -25,6 +25,7 @@ impl ConstantEnvironment {
             distance: f32::INFINITY,
             pdf_solid_angle: uniform_sphere_pdf(),
             p_light: p + wi,
+            p_light_error: Vec3::ZERO,
             n_light: Vec3::ZERO,
             is_delta: false,
         })

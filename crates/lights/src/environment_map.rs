@@ -232,6 +232,7 @@ impl EnvironmentMap {
             distance: f32::INFINITY,
             pdf_solid_angle: pdf,
             p_light: p + wi,
+            p_light_error: Vec3::ZERO,
             n_light: Vec3::ZERO,
             is_delta: false,
         })

@@ -18,6 +18,8 @@ pub struct MeshAreaLight {
     parallelogram: Option<Parallelogram>,
     /// Unit geometric normal of each triangle (zero for degenerate ones, which are never sampled).
     normals: Vec<Vec3>,
+    /// The error bound of each triangle's sampled points ([`geometry::triangle_point_error`]).
+    errors: Vec<Vec3>,
     area_distribution: CdfTable,
     total_area: f32,
     /// 1 / `total_area`: the density per unit area of a uniformly sampled point.
@@ -38,6 +40,10 @@ impl MeshAreaLight {
             .iter()
             .map(|[p0, p1, p2]| (*p1 - *p0).cross(*p2 - *p0).normalize_or_zero())
             .collect();
+        let errors = triangles
+            .iter()
+            .map(|&t| geometry::triangle_point_error(t))
+            .collect();
         let parallelogram = Parallelogram::of(&triangles, &normals);
         let (low, high) = triangles.iter().flatten().fold(
             (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
@@ -48,6 +54,7 @@ impl MeshAreaLight {
             triangles,
             parallelogram,
             normals,
+            errors,
             area_distribution,
             total_area,
             pdf_area: 1.0 / total_area,
@@ -77,34 +84,41 @@ impl MeshAreaLight {
     /// samples on the Cornell box).
     #[inline(always)]
     pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
-        let (p_light, n_light) = self.sample_point(u);
+        let (p_light, p_light_error, n_light) = self.sample_point(u);
         area_sample_towards(
             p,
             p_light.into(),
+            p_light_error.into(),
             n_light.into(),
             self.pdf_area,
             self.radiance,
         )
     }
 
-    /// A point uniform by area with `u` ∈ [0, 1)², and the unit normal there. Returned as
-    /// 16-byte vectors: a caller that is not inlined with it then reloads them whole from
-    /// where they were stored whole (reloading a 12-byte vector stored in two parts stalls,
-    /// 4% of the path loop's perf samples on the Cornell box).
+    /// A point uniform by area with `u` ∈ [0, 1)², a bound on its coordinates' distance from
+    /// the mesh's surface, and the unit normal there. Returned as 16-byte vectors: a caller that
+    /// is not inlined with it then reloads them whole from where they were stored whole
+    /// (reloading a 12-byte vector stored in two parts stalls, 4% of the path loop's perf samples
+    /// on the Cornell box).
     #[inline]
-    fn sample_point(&self, u: Vec2) -> (Vec3A, Vec3A) {
-        let (p, n) = if let Some(quad) = &self.parallelogram {
+    fn sample_point(&self, u: Vec2) -> (Vec3A, Vec3A, Vec3A) {
+        let (p, error, n) = if let Some(quad) = &self.parallelogram {
             (
                 quad.corner + u.x * quad.edge_u + u.y * quad.edge_v,
+                quad.error,
                 quad.normal,
             )
         } else {
             let (index, _pmf, u_remapped) = self.area_distribution.sample(u.x);
             let [p0, p1, p2] = self.triangles[index];
             let b = sample_uniform_triangle(Vec2::new(u_remapped, u.y));
-            (p0 * b.x + p1 * b.y + p2 * b.z, self.normals[index])
+            (
+                p0 * b.x + p1 * b.y + p2 * b.z,
+                self.errors[index],
+                self.normals[index],
+            )
         };
-        (p.into(), n.into())
+        (p.into(), error.into(), n.into())
     }
 
     /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`
@@ -118,8 +132,15 @@ impl MeshAreaLight {
     /// direction about its front normal (`u_dir`).
     #[inline]
     pub fn sample_emission(&self, u_point: Vec2, u_dir: Vec2) -> Option<EmissionSample> {
-        let (p, n) = self.sample_point(u_point);
-        lambertian_emission(p.into(), n.into(), self.radiance, self.total_area, u_dir)
+        let (p, error, n) = self.sample_point(u_point);
+        lambertian_emission(
+            p.into(),
+            error.into(),
+            n.into(),
+            self.radiance,
+            self.total_area,
+            u_dir,
+        )
     }
 
     /// Emitted power (W, mean over channels): π · area · radiance for a one-sided Lambertian emitter.
@@ -137,6 +158,11 @@ struct Parallelogram {
     edge_v: Vec3,
     /// The triangles' common unit normal.
     normal: Vec3,
+    /// A bound on how far a point `corner + u · edge_u + v · edge_v` computed in `f32` lies
+    /// from the two triangles, per coordinate: the rounding of the sum and of the edges,
+    /// `γ(5) (|corner| + |edge_u| + |edge_v|)`, and how far the fourth corner lies from the
+    /// first triangle's plane (the parallelogram is only nearly one).
+    error: Vec3,
 }
 
 impl Parallelogram {
@@ -164,11 +190,14 @@ impl Parallelogram {
         if (corner + opposite - a - b).length() > 1e-6 * size {
             return None;
         }
+        let (edge_u, edge_v) = (a - corner, b - corner);
+        let rounding = geometry::gamma(5.0) * (corner.abs() + edge_u.abs() + edge_v.abs());
         Some(Self {
             corner,
-            edge_u: a - corner,
-            edge_v: b - corner,
+            edge_u,
+            edge_v,
             normal: *n0,
+            error: rounding + (corner + opposite - a - b).abs(),
         })
     }
 }
@@ -190,16 +219,72 @@ mod tests {
     fn two_triangles_sharing_a_diagonal_are_sampled_as_a_parallelogram() {
         let [o, x, y] = [Vec3::new(1.0, 2.0, 3.0), Vec3::X, Vec3::new(0.5, 0.0, 2.0)];
         let quad = light(vec![[o, o + x, o + x + y], [o + x + y, o + y, o]]);
+        let (corner, edge_u, edge_v) = (o + x, o - (o + x), o + x + y - (o + x));
+        let rounding = geometry::gamma(5.0) * (corner.abs() + edge_u.abs() + edge_v.abs());
         let expected = Parallelogram {
-            corner: o + x,
-            edge_u: o - (o + x),
-            edge_v: o + x + y - (o + x),
+            corner,
+            edge_u,
+            edge_v,
             normal: x.cross(y).normalize(),
+            error: rounding + (corner + (o + y) - o - (o + x + y)).abs(),
         };
         assert_eq!(quad.parallelogram, Some(expected));
         // Its corners come from the corners of [0, 1)².
-        let (p, n) = quad.sample_point(Vec2::ZERO);
+        let (p, error, n) = quad.sample_point(Vec2::ZERO);
         assert_eq!((Vec3::from(p), Vec3::from(n)), (o + x, expected.normal));
+        assert_eq!(Vec3::from(error), expected.error);
+        assert!(expected.error.cmpgt(Vec3::ZERO).all());
+    }
+
+    #[test]
+    fn sampled_points_lie_on_the_mesh_within_their_error_bound() {
+        // A parallelogram whose fourth corner is off the first triangle's plane by more than
+        // the rounding (but within what counts as a parallelogram), and a single triangle far
+        // from the origin.
+        let [o, x, y] = [
+            Vec3::new(0.1, -0.2, 0.05),
+            Vec3::new(3.0, 0.1, 0.0),
+            Vec3::new(0.2, 0.0, 2.0),
+        ];
+        let bent = o + x + y + Vec3::new(0.0, 4e-6, 0.0);
+        let far = Vec3::new(1e3, -2e3, 5e2);
+        let lights = [
+            light(vec![[o + x, bent, o], [o + y, o, bent]]),
+            light(vec![[far, far + x, far + y]]),
+        ];
+        assert!(lights[0].parallelogram.is_some());
+        let mut rng = sampling::rng::Rng::new(5);
+        for light in &lights {
+            for _ in 0..1000 {
+                let u = Vec2::new(rng.next_f32(), rng.next_f32());
+                let (p, error, n) = light.sample_point(u);
+                let (p, error, n) = (Vec3::from(p), Vec3::from(error), Vec3::from(n));
+                // The distance from the plane of the triangle the point projects into, in
+                // double precision.
+                let q = p.as_dvec3();
+                let distance = light
+                    .triangles
+                    .iter()
+                    .filter_map(|t| {
+                        let [a, b, c] = t.map(|v| v.as_dvec3());
+                        let normal = (b - a).cross(c - a);
+                        let weight = |e0: glam::DVec3, e1: glam::DVec3| {
+                            (e0 - q).cross(e1 - q).dot(normal) / normal.length_squared()
+                        };
+                        let inside = [weight(b, c), weight(c, a), weight(a, b)]
+                            .iter()
+                            .all(|&w| w >= -1e-9);
+                        inside.then(|| (q - a).dot(normal.normalize()).abs())
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                assert!(distance.is_finite(), "{p} is on no triangle");
+                let bound = f64::from(n.abs().dot(error));
+                assert!(
+                    distance <= bound,
+                    "{p}: {distance} off the mesh, bound {bound}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -29,6 +29,7 @@ impl PointLight {
             distance,
             pdf_solid_angle: 1.0,
             p_light: self.position,
+            p_light_error: Vec3::ZERO,
             n_light: Vec3::ZERO,
             is_delta: true,
         })

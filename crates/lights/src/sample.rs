@@ -17,6 +17,9 @@ pub struct LightSample {
     pub pdf_solid_angle: f32,
     /// The sampled point on the light (the shading point plus `wi` for the environment).
     pub p_light: Vec3,
+    /// A bound on the rounding error of each coordinate of `p_light` (world units; zero where it
+    /// is no surface point), which a shadow ray's end is moved off the light by.
+    pub p_light_error: Vec3,
     /// Unit normal of the light surface at `p_light` (zero for point lights and the environment).
     pub n_light: Vec3,
     /// True for lights that no random ray can hit (point lights).

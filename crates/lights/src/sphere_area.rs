@@ -72,6 +72,7 @@ impl SphereAreaLight {
             ))
             .normalize();
         let p_light = self.center + self.radius * n_light;
+        let p_light_error = geometry::sphere_point_error(self.center, self.radius);
         let to_light = p_light - p;
         let distance = to_light.length();
         if distance.is_nan() || distance <= 0.0 {
@@ -87,6 +88,7 @@ impl SphereAreaLight {
             distance,
             pdf_solid_angle,
             p_light,
+            p_light_error,
             n_light,
             is_delta: false,
         })
@@ -101,6 +103,7 @@ impl SphereAreaLight {
         let area = 4.0 * PI * self.radius * self.radius;
         lambertian_emission(
             self.center + self.radius * outward,
+            geometry::sphere_point_error(self.center, self.radius),
             n,
             self.radiance,
             area,
@@ -111,8 +114,16 @@ impl SphereAreaLight {
     fn sample_area(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         let outward = sample_uniform_sphere(u);
         let p_light = self.center + self.radius * outward;
+        let p_light_error = geometry::sphere_point_error(self.center, self.radius);
         let n_light = if self.flip_normals { -outward } else { outward };
-        area_sample_towards(p, p_light, n_light, self.pdf_area(), self.radiance)
+        area_sample_towards(
+            p,
+            p_light,
+            p_light_error,
+            n_light,
+            self.pdf_area(),
+            self.radiance,
+        )
     }
 
     /// Density per steradian with which [`Self::sample_li`] from `p` picks the point `p_light`

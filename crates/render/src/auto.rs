@@ -4,8 +4,8 @@
 //! `auto` starts from the MIS preset minus what the scene cannot use (no light sampling without
 //! lights or without a non-delta BSDF, no MIS where no light can be hit, uniform light choice for
 //! one light: [`crate::technique::auto_settings`]). Each technique whose payoff depends on the
-//! scene is then a *trial* ([`Trials`]): RIS light selection against power-proportional
-//! selection (several lights), Russian roulette off against on (paths bounded beyond the
+//! scene is then a *trial* ([`Trials`]): RIS light selection and uniform light selection against
+//! power-proportional selection (several lights), Russian roulette off against on (paths bounded beyond the
 //! roulette's start), path reuse (diffuse materials), and light tracing off against on.
 //!
 //! Caustics by light tracing are in the base wherever they apply (a delta BSDF, an area light,
@@ -32,7 +32,8 @@
 //!
 //! A trial is kept when its efficiency beats the base's by more than twice the standard error
 //! of their log ratio (independent units: 4 × 4 pixel blocks, so that path reuse's correlated
-//! blocks count once). Light tracing and path reuse exclude each other: the better is kept. When
+//! blocks count once). Trials that exclude each other (the two light selections; light tracing
+//! off and path reuse) keep only the better. When
 //! two or more trials are kept their combination is measured too, and the best measured
 //! candidate wins. The pilot's samples are not in the image (its seeds differ from the image's),
 //! so the image stays unbiased whatever is chosen; its time counts in the render's.
@@ -97,6 +98,10 @@ pub const COST: Cost = Cost {
 pub struct Trials {
     /// RIS light selection ([`RIS_CANDIDATES`] candidates) instead of power-proportional.
     pub ris: bool,
+    /// Uniform light selection instead of power-proportional (Mitsuba's default): power
+    /// overrates lights whose power mostly misses the scene, such as an environment around a
+    /// large open scene, whose power grows with the scene's bounding sphere.
+    pub uniform_lights: bool,
     /// Russian roulette off (only where `max_depth` bounds the paths).
     pub no_roulette: bool,
     /// Caustics by light tracing off (it is in the base wherever it applies: see the module
@@ -109,13 +114,18 @@ pub struct Trials {
 impl Trials {
     /// Whether anything is to be measured.
     pub fn any(&self) -> bool {
-        self.ris || self.no_roulette || self.no_light_tracing || self.path_reuse
+        self.ris
+            || self.uniform_lights
+            || self.no_roulette
+            || self.no_light_tracing
+            || self.path_reuse
     }
 
     /// The trials in their fixed order, each with its label and the settings it changes.
     fn switches(&self) -> Vec<Switch> {
         [
             (self.ris, Switch::Ris),
+            (self.uniform_lights, Switch::UniformLights),
             (self.no_roulette, Switch::NoRoulette),
             (self.no_light_tracing, Switch::NoLightTracing),
             (self.path_reuse, Switch::PathReuse),
@@ -130,6 +140,7 @@ impl Trials {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Switch {
     Ris,
+    UniformLights,
     NoRoulette,
     NoLightTracing,
     PathReuse,
@@ -139,6 +150,7 @@ impl Switch {
     fn label(self) -> &'static str {
         match self {
             Switch::Ris => "+ris",
+            Switch::UniformLights => "+uniform-lights",
             Switch::NoRoulette => "-roulette",
             Switch::NoLightTracing => "-light-tracing",
             Switch::PathReuse => "+path-reuse",
@@ -151,6 +163,10 @@ impl Switch {
                 light_selection: LightSelectionMode::Ris {
                     candidates: RIS_CANDIDATES,
                 },
+                ..settings
+            },
+            Switch::UniformLights => PathSettings {
+                light_selection: LightSelectionMode::Uniform,
                 ..settings
             },
             Switch::NoRoulette => PathSettings {
@@ -287,23 +303,29 @@ pub fn pilot_seed(seed: u32, replica: u32) -> u32 {
     sampling::rng::wang_hash(seed ^ 0x5EED_0A70 ^ (replica << 4))
 }
 
+/// Camera samples the pilot takes per thumbnail pixel for `trials`, at most: every candidate's
+/// two renders, and a combination.
+pub fn pilot_samples_per_pixel(trials: &Trials) -> f64 {
+    (2.0 + trials.switches().len() as f64) * 2.0 * f64::from(PILOT_SPP)
+}
+
 /// The pilot's thumbnail for a `width × height` image rendered with `trials` at `spp` samples
-/// per pixel (`None`: a time budget): the image divided by the smallest whole factor that leaves
-/// at most [`PILOT_PIXELS`] pixels, and few enough that the pilot's samples (every candidate's
-/// two renders and a combination) stay within [`MAX_PILOT_SHARE`] of the image's. `None` when
+/// per pixel (`None`: a time budget), of at most `most_pixels` pixels: the image divided by the
+/// smallest whole factor that leaves at most that many and at most [`PILOT_PIXELS`], and few
+/// enough that the pilot's samples stay within [`MAX_PILOT_SHARE`] of the image's. `None` when
 /// that leaves fewer than [`MIN_PILOT_PIXELS`]: the budget cannot pay for a pilot.
 pub fn thumbnail_size(
     width: u32,
     height: u32,
     trials: &Trials,
     spp: Option<u32>,
+    most_pixels: f64,
 ) -> Option<(u32, u32)> {
-    let candidates = 2.0 + trials.switches().len() as f64;
-    let per_pixel = candidates * 2.0 * f64::from(PILOT_SPP);
+    let per_pixel = pilot_samples_per_pixel(trials);
     let affordable = spp.map_or(f64::INFINITY, |spp| {
         MAX_PILOT_SHARE * f64::from(spp) * f64::from(width) * f64::from(height) / per_pixel
     });
-    let most = affordable.min(f64::from(PILOT_PIXELS));
+    let most = affordable.min(f64::from(PILOT_PIXELS)).min(most_pixels);
     let mut factor = 1;
     let size = |factor: u32| (width.div_ceil(factor), height.div_ceil(factor));
     while {
@@ -342,8 +364,9 @@ pub fn choose<E>(
         .map(|((label, settings), pilot)| measure(label, *settings, pilot, &means, thumbnail))
         .collect();
 
-    // The trials that beat the base beyond noise; light tracing and path reuse exclude each
-    // other, so only the better of the two stays.
+    // The trials that beat the base beyond noise. Trials of one group exclude each other (two
+    // light selections; light tracing off and path reuse, which turns it off), so only the
+    // better of a group stays.
     let base_measured = measured[0].clone();
     let mut kept: Vec<(Switch, f64)> = switches
         .iter()
@@ -351,14 +374,16 @@ pub fn choose<E>(
         .filter(|(_, m)| significantly_better(m, &base_measured))
         .map(|(&s, m)| (s, m.efficiency()))
         .collect();
-    let exclusive = |s: Switch| matches!(s, Switch::NoLightTracing | Switch::PathReuse);
-    if kept.iter().filter(|(s, _)| exclusive(*s)).count() > 1 {
+    for group in [
+        [Switch::Ris, Switch::UniformLights],
+        [Switch::NoLightTracing, Switch::PathReuse],
+    ] {
         let best = kept
             .iter()
-            .filter(|(s, _)| exclusive(*s))
+            .filter(|(s, _)| group.contains(s))
             .max_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(s, _)| *s);
-        kept.retain(|(s, _)| !exclusive(*s) || Some(*s) == best);
+        kept.retain(|(s, _)| !group.contains(s) || Some(*s) == best);
     }
     // Candidates that may win: the kept trials (their index in `measured`) and their
     // combination, measured when there are two or more.
@@ -668,28 +693,65 @@ mod tests {
     }
 
     #[test]
+    fn one_light_selection_is_kept_of_two_that_beat_power() {
+        let trials = Trials {
+            ris: true,
+            uniform_lights: true,
+            ..Trials::default()
+        };
+        let choice = choose(base(), &trials, SIZE, |s| {
+            Ok::<_, ()>(match s.light_selection {
+                LightSelectionMode::Power => renders(0.1, 100, 1),
+                LightSelectionMode::Ris { .. } => renders(0.05, 100, 2),
+                LightSelectionMode::Uniform => renders(0.03, 100, 3),
+            })
+        })
+        .unwrap();
+        assert_eq!(choice.label, "+uniform-lights");
+        assert_eq!(choice.settings.light_selection, LightSelectionMode::Uniform);
+        assert_eq!(
+            choice.measured.len(),
+            3,
+            "no combination of two light selections"
+        );
+    }
+
+    #[test]
     fn thumbnails_keep_the_aspect_and_fit_the_pixel_and_sample_budgets() {
         let one = Trials {
             ris: true,
             ..Trials::default()
         };
-        assert_eq!(thumbnail_size(256, 256, &one, None), Some((64, 64)));
-        assert_eq!(thumbnail_size(40, 30, &one, None), Some((40, 30)));
-        let (w, h) = thumbnail_size(1920, 1080, &one, None).unwrap();
+        assert_eq!(
+            thumbnail_size(256, 256, &one, None, f64::INFINITY),
+            Some((64, 64))
+        );
+        assert_eq!(
+            thumbnail_size(40, 30, &one, None, f64::INFINITY),
+            Some((40, 30))
+        );
+        let (w, h) = thumbnail_size(1920, 1080, &one, None, f64::INFINITY).unwrap();
         assert!(w * h <= PILOT_PIXELS, "{w}x{h}");
         assert!(w * h > PILOT_PIXELS / 2, "{w}x{h}");
         assert!((w as f64 / h as f64 - 1920.0 / 1080.0).abs() < 0.05);
         // 128 x 128 at 64 spp: 3 candidates x 2 renders x 4 spp per thumbnail pixel may take
         // a tenth of 64 x 16384 samples, 43690 thumbnail pixels: the 4096 cap holds.
-        assert_eq!(thumbnail_size(128, 128, &one, Some(64)), Some((64, 64)));
+        assert_eq!(
+            thumbnail_size(128, 128, &one, Some(64), f64::INFINITY),
+            Some((64, 64))
+        );
         // At 8 spp: 4369 pixels would do, but 64 x 64 is the largest whole division under it.
-        let (w, h) = thumbnail_size(128, 128, &one, Some(8)).unwrap();
+        let (w, h) = thumbnail_size(128, 128, &one, Some(8), f64::INFINITY).unwrap();
         let pilot = 3 * 2 * PILOT_SPP * w * h;
         assert!(
             f64::from(pilot) <= MAX_PILOT_SHARE * 8.0 * 128.0 * 128.0,
             "{w}x{h}"
         );
         // At 1 spp not even 16 x 16 pixels fit.
-        assert_eq!(thumbnail_size(128, 128, &one, Some(1)), None);
+        assert_eq!(thumbnail_size(128, 128, &one, Some(1), f64::INFINITY), None);
+        // A time budget's cap on the pixels.
+        let (w, h) = thumbnail_size(256, 256, &one, None, 1000.0).unwrap();
+        assert!(w * h <= 1000 && w * h > 500, "{w}x{h}");
+        assert_eq!(thumbnail_size(256, 256, &one, None, 100.0), None);
     }
 }

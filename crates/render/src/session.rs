@@ -148,18 +148,63 @@ fn choose_techniques(
     // render it is a piece of, and must choose as that render does, whatever its own range
     // (otherwise pieces of one render could choose differently, and not merge into it).
     let whole_spp = plan.budget.max_spp.map(|_| plan.sampler_spp);
-    let Some(thumbnail) = auto::thumbnail_size(width, height, &plan.trials, whole_spp) else {
-        let reason = format!(
-            "{} spp: a pilot of {} pixels or more would take more than {}% of the samples",
-            whole_spp.unwrap_or(0),
-            auto::MIN_PILOT_PIXELS,
-            auto::MAX_PILOT_SHARE * 100.0
-        );
-        return Ok(Some(TechniquePilot {
+    let start = std::time::Instant::now();
+    let quiet = RenderOptions {
+        stop: options.stop.clone(),
+        ..RenderOptions::quiet()
+    };
+    let skipped = |reason: String| {
+        Ok(Some(TechniquePilot {
             choice: AutoChoice::unmeasured(base, reason),
-            seconds: 0.0,
+            seconds: start.elapsed().as_secs_f64(),
             rays: RayCounters::default(),
-        }));
+        }))
+    };
+    let thumbnail =
+        |most_pixels| auto::thumbnail_size(width, height, &plan.trials, whole_spp, most_pixels);
+    let mut most_pixels = f64::INFINITY;
+    if let Some(budget_seconds) = plan.budget.max_seconds
+        && let Some(probe) = thumbnail(most_pixels)
+    {
+        // Time one sample per pixel of the base on the largest thumbnail; a pilot sample costs
+        // about that, a trial's up to half as much again.
+        let camera = Camera::new(&scene.desc.sensor, probe.0, probe.1);
+        let probe_plan = RenderPlan {
+            transport: Transport::Path(base),
+            seed: auto::pilot_seed(plan.seed, 2),
+            budget: RenderBudget::spp(1),
+            sampler_spp: 1,
+            adaptive: false,
+            trials: Trials::default(),
+            ..*plan
+        };
+        let ignore = |_: &mut RayCounters| {};
+        let context = Context {
+            view: View {
+                camera: &camera,
+                width: probe.0,
+                height: probe.1,
+            },
+            ..Context::new(scene, &probe_plan, filter, &quiet, &ignore)
+        };
+        let seconds = render_sampled(&context)?.seconds.max(1e-6);
+        let per_sample = 1.5 * seconds / f64::from(probe.0 * probe.1);
+        most_pixels = auto::MAX_PILOT_SHARE * budget_seconds
+            / (per_sample * auto::pilot_samples_per_pixel(&plan.trials));
+    }
+    let Some(thumbnail) = thumbnail(most_pixels) else {
+        return skipped(match whole_spp {
+            Some(spp) => format!(
+                "{spp} spp: a pilot of {} pixels or more would take more than {}% of the samples",
+                auto::MIN_PILOT_PIXELS,
+                auto::MAX_PILOT_SHARE * 100.0
+            ),
+            None => format!(
+                "a pilot of {} pixels or more would take more than {}% of the time",
+                auto::MIN_PILOT_PIXELS,
+                auto::MAX_PILOT_SHARE * 100.0
+            ),
+        });
     };
     let camera = Camera::new(&scene.desc.sensor, thumbnail.0, thumbnail.1);
     let view = View {
@@ -173,11 +218,6 @@ fn choose_techniques(
         rays.fetch_add(counters.rays, Ordering::Relaxed);
         shadow_rays.fetch_add(counters.shadow_rays, Ordering::Relaxed);
     };
-    let quiet = RenderOptions {
-        stop: options.stop.clone(),
-        ..RenderOptions::quiet()
-    };
-    let start = std::time::Instant::now();
     let choice = auto::choose(base, &plan.trials, thumbnail, |settings| {
         let before = RayCounters {
             rays: rays.load(Ordering::Relaxed),
@@ -271,7 +311,10 @@ fn render_adaptive<T: RayTally + Default + Send>(
         ..*plan
     };
     let image_options = RenderOptions {
-        allocation: Some(Arc::new(Allocation::from_pilot(&pilot.film, &costs))),
+        allocation: Some(Arc::new(match reuse_block(plan) {
+            Some(block) => Allocation::from_pilot(&pilot.film, &costs).blockwise(block),
+            None => Allocation::from_pilot(&pilot.film, &costs),
+        })),
         ..options.clone()
     };
     let mut output = render_sampled(&Context::new(
@@ -287,6 +330,14 @@ fn render_adaptive<T: RayTally + Default + Send>(
     output.passes += pilot.passes;
     output.non_finite.merge(pilot.non_finite);
     Ok(output)
+}
+
+/// The block edge of `plan`'s path reuse, if it reuses paths.
+fn reuse_block(plan: &RenderPlan) -> Option<u32> {
+    match plan.transport {
+        Transport::Path(settings) => settings.path_reuse.map(|reuse| reuse.block),
+        Transport::Reference(_) => None,
+    }
 }
 
 /// Path vertices whose sampler dimensions come from the sampler's pattern (with the camera's);

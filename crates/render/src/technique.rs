@@ -183,6 +183,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             };
             trials = Trials {
                 ris: many_lights,
+                uniform_lights: many_lights,
                 no_roulette: args.rr.is_none()
                     && settings.direct_samples.is_none()
                     && settings

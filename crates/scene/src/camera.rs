@@ -224,6 +224,7 @@ mod tests {
                 glam::Vec4::NEG_Z,
                 glam::Vec4::new(1.0, 2.0, 3.0, 1.0),
             ),
+            position: glam::DVec3::ZERO,
             fov_deg: 40.0,
             fov_axis: FovAxis::X,
             near_clip: 0.5,
@@ -338,6 +339,7 @@ mod tests {
         );
         let sensor = SensorDesc {
             to_world,
+            position: glam::DVec3::ZERO,
             fov_deg: 90.0,
             fov_axis: FovAxis::X,
             near_clip: 0.5,

@@ -2,6 +2,8 @@
 
 use std::path::Path;
 
+use glam::DVec3;
+
 use crate::desc::SceneDesc;
 use crate::error::Result;
 use crate::params::Params;
@@ -49,6 +51,17 @@ fn interpret_scene(path: &Path, root: &ObjectNode) -> Result<SceneDesc> {
             bsdfs.add(object)?;
         }
     }
+    // The first sensor is read ahead: its position is the origin of the description's frame,
+    // subtracted from every position in double precision as it is placed. Its errors are
+    // reported in document order below (the frame is then the world's, unused).
+    let mut first_camera = root.children.iter().find_map(|child| match child {
+        Child::Object(object) if object.tag == "sensor" => Some(sensor(object)),
+        _ => None,
+    });
+    let origin = match &first_camera {
+        Some(Ok(first)) => first.sensor.position,
+        _ => DVec3::ZERO,
+    };
     let mut groups = ShapeGroups::new(root)?;
     let mut shapes = Vec::new();
     for child in &root.children {
@@ -68,19 +81,25 @@ fn interpret_scene(path: &Path, root: &ObjectNode) -> Result<SceneDesc> {
             }
             // The first sensor is rendered, as by Mitsuba's `mi.render` and its command line
             // without `--sensor`; later ones are read for their errors only.
-            "sensor" if camera.is_none() => camera = Some(sensor(object)?),
+            "sensor" if camera.is_none() => {
+                camera = Some(
+                    first_camera
+                        .take()
+                        .expect("the first sensor was read ahead")?,
+                );
+            }
             "sensor" => {
                 sensor(object)?;
             }
             // A shape group is placed by its instances only.
             "shape" if object.plugin == "shapegroup" => {}
             "shape" if object.plugin == "instance" => {
-                shapes.extend(groups.instance(object, &mut bsdfs)?);
+                shapes.extend(groups.instance(object, &mut bsdfs, origin)?);
             }
-            "shape" => shapes.push(shape(object, &mut bsdfs)?),
+            "shape" => shapes.push(shape(object, &mut bsdfs, origin)?),
             // An area emitter with an id emits from the shapes that reference it.
             "emitter" if object.plugin == "area" && object.id.is_some() => {}
-            "emitter" => emitters.push(scene_emitter(object)?),
+            "emitter" => emitters.push(scene_emitter(object, origin)?),
             "film" | "sampler" => {
                 return Err(object.loc.error(format!(
                     "<{}> must be nested inside the <sensor>",

@@ -6,17 +6,22 @@
 //! on intersection and offset error grows with the coordinates. Measured from the camera, the
 //! coordinates of everything the camera sees well are as small as the scene allows, so a scene
 //! far from the origin renders like the same scene at the origin.
+//!
+//! The loader already places everything relative to the camera, in double precision (see
+//! [`crate::SceneDesc`]); this pass moves what a description built by hand still has in world
+//! space, in `f32`.
 
 use crate::desc::{EmitterDesc, Geometry, SceneDesc};
 use glam::{Mat4, Vec3};
 
 /// Translates every position of `desc` (mesh vertices, sphere centres, point and spot lights and the
-/// sensor) by minus the sensor's position.
+/// sensor) by minus the translation of the sensor's `to_world`, which moves into its `position`.
 pub(crate) fn camera_relative(desc: &mut SceneDesc) {
     let offset = desc.sensor.to_world.w_axis.truncate();
     if offset == Vec3::ZERO || !offset.is_finite() {
         return;
     }
+    desc.sensor.position += offset.as_dvec3();
     desc.sensor.to_world = Mat4::from_translation(-offset) * desc.sensor.to_world;
     desc.sensor.to_world.w_axis = glam::Vec4::W;
     for shape in &mut desc.shapes {
@@ -51,7 +56,25 @@ mod tests {
         let mut desc = crate::parse_file(&path, &[]).expect("a valid scene");
         let _ = std::fs::remove_file(&path);
         let rotation = desc.sensor.to_world.x_axis;
+        let loaded = desc.clone();
         camera_relative(&mut desc);
+        assert_eq!(desc, loaded, "the loader centres the scene on the camera");
+        // As if built by hand in world space: the camera's translation back in its to_world,
+        // every position in world space.
+        let position = desc.sensor.position.as_vec3();
+        desc.sensor.to_world.w_axis = position.extend(1.0);
+        desc.sensor.position = glam::DVec3::ZERO;
+        for shape in &mut desc.shapes {
+            match &mut shape.geometry {
+                Geometry::Mesh(mesh) => mesh.positions.iter_mut().for_each(|p| *p += position),
+                Geometry::Sphere(sphere) => sphere.center += position,
+            }
+        }
+        if let EmitterDesc::Point { position: p, .. } = &mut desc.emitters[0] {
+            *p += position;
+        }
+        camera_relative(&mut desc);
+        assert_eq!(desc.sensor.position, glam::DVec3::new(1e5, -2.0, 3.0));
         assert_eq!(desc.sensor.to_world.w_axis, glam::Vec4::W);
         assert_eq!(
             desc.sensor.to_world.x_axis, rotation,

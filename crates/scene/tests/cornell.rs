@@ -9,8 +9,49 @@ use scene::{
     MicrofacetDistribution, Roughness, SamplerKind, SceneDesc, ShapeDesc,
 };
 
-fn cornell() -> SceneDesc {
+/// The fixture as loaded: relative to its camera at (0, 1, 6.8).
+fn cornell_from_camera() -> SceneDesc {
     scene::parse_file(&data_dir().join("cornell.xml"), &[]).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The fixture with its positions moved back to world space (by the camera's position), where
+/// the hand computations below are made.
+fn cornell() -> SceneDesc {
+    let mut desc = cornell_from_camera();
+    let camera = desc.sensor.position.as_vec3();
+    for shape in &mut desc.shapes {
+        match &mut shape.geometry {
+            Geometry::Mesh(mesh) => mesh.positions.iter_mut().for_each(|p| *p += camera),
+            Geometry::Sphere(sphere) => sphere.center += camera,
+        }
+    }
+    for emitter in &mut desc.emitters {
+        if let EmitterDesc::Point { position, .. } = emitter {
+            *position += camera;
+        }
+    }
+    desc
+}
+
+#[test]
+fn positions_are_relative_to_the_camera() {
+    let desc = cornell_from_camera();
+    assert_eq!(desc.sensor.position, glam::DVec3::new(0.0, 1.0, 6.8));
+    assert_eq!(desc.sensor.to_world.w_axis, glam::Vec4::W);
+    // The floor's corner (3, 0, −3) in world space; 6.8 and 9.8 are not exact in binary, so
+    // the subtraction in double precision is what makes these the nearest floats.
+    let floor = mesh(&desc, "floor");
+    assert!(
+        floor
+            .positions
+            .contains(&Vec3::new(3.0, -1.0, (-3.0_f64 - 6.8) as f32)),
+        "{:?}",
+        floor.positions
+    );
+    let EmitterDesc::Point { position, .. } = desc.emitters[0] else {
+        panic!("a point light")
+    };
+    assert_eq!(position, Vec3::new(0.0, 0.5, (1.0_f64 - 6.8) as f32));
 }
 
 fn shape<'a>(desc: &'a SceneDesc, id: &str) -> &'a ShapeDesc {
@@ -241,11 +282,8 @@ fn render_settings() {
     // Smaller axis of a 128×96 image is y: x_fov = 2 atan(tan(39.3077°/2) · 4/3) = 50.92675°.
     assert!((desc.sensor.x_fov_deg(128, 96) - 50.92675).abs() < 1e-3);
     let m = desc.sensor.to_world;
-    assert!(close(
-        m.transform_point3(Vec3::ZERO),
-        Vec3::new(0.0, 1.0, 6.8),
-        1e-6
-    ));
+    assert_eq!(m.transform_point3(Vec3::ZERO), Vec3::ZERO);
+    assert_eq!(desc.sensor.position, glam::DVec3::new(0.0, 1.0, 6.8));
     assert!(close(m.transform_vector3(Vec3::Z), -Vec3::Z, 1e-6));
     assert!(close(m.transform_vector3(Vec3::X), -Vec3::X, 1e-6));
     assert!(desc.sensor.lens.is_none());

@@ -2,7 +2,7 @@
 //! rendering on request and reporting each render's wall time.
 
 use std::io::{BufRead, BufReader, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 
 /// The Mitsuba process and its pipes.
@@ -12,10 +12,37 @@ pub struct MitsubaServer {
     output: BufReader<ChildStdout>,
 }
 
+/// What to try when Mitsuba fails: its messages are above, and the LLVM variants need libLLVM.
+const HINT: &str = "see Mitsuba's messages above; `llvm_*` variants need DRJIT_LIBLLVM_PATH \
+                    naming libLLVM (e.g. /usr/lib/x86_64-linux-gnu/libLLVM-19.so)";
+
+/// The Python script that drives Mitsuba.
+fn script() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_server.py")
+}
+
+/// Loads each of `scenes` in Mitsuba with `variant`, without rendering; the error names the first
+/// scene Mitsuba cannot load.
+pub fn check_loads(scenes: &[PathBuf], variant: &str) -> Result<(), String> {
+    let script = script();
+    let status = Command::new("python3")
+        .arg(&script)
+        .arg("--check")
+        .arg(variant)
+        .args(scenes)
+        .status()
+        .map_err(|e| format!("cannot run python3 {}: {e}", script.display()))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("Mitsuba could not load every scene ({HINT})"))
+    }
+}
+
 impl MitsubaServer {
     /// Starts Mitsuba on `scene` with `variant` and waits until its warm-up render is done.
     pub fn start(scene: &Path, variant: &str) -> Result<Self, String> {
-        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_server.py");
+        let script = script();
         let mut child = Command::new("python3")
             .arg(&script)
             .arg(scene)
@@ -58,7 +85,7 @@ impl MitsubaServer {
             .read_line(&mut line)
             .map_err(|e| format!("from Mitsuba: {e}"))?;
         if read == 0 {
-            return Err("Mitsuba exited (see its messages above)".to_string());
+            return Err(format!("Mitsuba exited ({HINT})"));
         }
         Ok(line.trim().to_string())
     }

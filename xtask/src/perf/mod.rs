@@ -3,7 +3,9 @@
 //! against Mitsuba 3).
 
 mod embree;
+mod generate;
 mod mitsuba_server;
+mod noise;
 mod raycast_limit;
 mod vs_mitsuba;
 

@@ -26,6 +26,46 @@ pub struct Configuration {
     pub adaptive: bool,
     /// What `auto` measures before rendering (nothing for the other rungs).
     pub trials: Trials,
+    /// The rung this one adds a technique to (`None` for the reference integrator and `auto`,
+    /// which stand on their own). Not always the rung above it: `+roulette` builds on `mis`,
+    /// not on the light-selection rungs listed between them.
+    pub builds_on: Option<String>,
+}
+
+impl Configuration {
+    /// Every technique the rung renders with: the light transport's, then the sampler and
+    /// adaptive sampling; for `auto`, its base and what its pilot tries
+    /// (`pilot-tries-…`), since the pilot decides the rest on the scene.
+    pub fn techniques(&self) -> Vec<String> {
+        let mut names = self.transport.technique_names();
+        names.push(format!("sampler-{}", sampler_name(self.sampler)));
+        if self.adaptive {
+            names.push("adaptive-sampling".to_string());
+        }
+        let trials = [
+            (self.trials.ris, "ris-lights"),
+            (self.trials.no_roulette, "no-roulette"),
+            (self.trials.no_light_tracing, "no-light-tracing"),
+            (self.trials.path_reuse, "path-reuse"),
+        ];
+        names.extend(
+            trials
+                .iter()
+                .filter(|(on, _)| *on)
+                .map(|(_, name)| format!("pilot-tries-{name}")),
+        );
+        names
+    }
+}
+
+/// The sampler's name as the command line's `--sampler` spells it.
+pub fn sampler_name(kind: SamplerKind) -> &'static str {
+    match kind {
+        SamplerKind::Independent => "independent",
+        SamplerKind::Stratified => "stratified",
+        SamplerKind::BlueNoise => "bluenoise",
+        SamplerKind::Sobol => "sobol",
+    }
 }
 
 /// What the scene file fixes for every configuration.
@@ -67,28 +107,30 @@ impl SceneTransport {
     }
 }
 
-/// The ladder for a scene with `features`: reference → BSDF sampling only → NEE without MIS →
-/// MIS → (uniform and RIS light selection, with more than one light) → + roulette → +
-/// stratified → + blue noise → + Sobol → + adaptive sampling (Sobol) → + light tracing (where
-/// it applies) → + path reuse (where a diffuse material gives it something to share), and
-/// `auto`: the plan `strata render` makes without flags (`auto`), whose pilot chooses its
-/// techniques on the scene. Light selection and
-/// the later rungs build on MIS (on NEE where no light can be
-/// hit, on BSDF sampling where none can be sampled). BSDF-only is left out when the scene has delta lights
-/// (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be sampled; MIS
-/// when no light can be hit (it equals NEE there).
+/// The ladder for a scene with `features`, each rung naming the one it builds on
+/// ([`Configuration::builds_on`]): reference; BSDF sampling only; NEE without MIS; MIS; uniform
+/// and RIS light selection (with more than one light) and + roulette, each on MIS (on NEE where
+/// no light can be hit, on BSDF sampling where none can be sampled); + stratified, + blue noise
+/// and + Sobol, each a sampler swapped into + roulette; + adaptive sampling on + Sobol; + light
+/// tracing (where it applies) and + path reuse (where a diffuse material gives it something to
+/// share), each on + adaptive; and `auto`: the plan `strata render` makes without flags, whose
+/// pilot chooses its techniques on the scene. BSDF-only is left out when the scene has delta
+/// lights (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be
+/// sampled; MIS when no light can be hit (it equals NEE there).
 pub fn ladder(
     transport: &SceneTransport,
     features: &SceneFeatures,
     auto: &RenderPlan,
 ) -> Vec<Configuration> {
-    let rung = |name: &str, settings: PathSettings, sampler| Configuration {
-        name: name.to_string(),
-        transport: Transport::Path(settings),
-        sampler,
-        adaptive: false,
-        trials: Trials::default(),
-    };
+    let rung =
+        |name: &str, settings: PathSettings, sampler, builds_on: Option<&str>| Configuration {
+            name: name.to_string(),
+            transport: Transport::Path(settings),
+            sampler,
+            adaptive: false,
+            trials: Trials::default(),
+            builds_on: builds_on.map(str::to_string),
+        };
     let independent = SamplerKind::Independent;
     let mis = transport.mis();
     let mut rungs = vec![Configuration {
@@ -102,6 +144,7 @@ pub fn ladder(
         sampler: independent,
         adaptive: false,
         trials: Trials::default(),
+        builds_on: None,
     }];
     let no_nee = PathSettings {
         sample_lights: false,
@@ -109,10 +152,12 @@ pub fn ladder(
         ..mis
     };
     if features.light_count > 0 && !features.has_delta_lights() {
-        rungs.push(rung("bsdf", no_nee, independent));
+        rungs.push(rung("bsdf", no_nee, independent, Some(REFERENCE)));
     }
     let can_sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
+    let last = |rungs: &[Configuration]| rungs.last().map(|c| c.name.clone());
     if can_sample_lights {
+        let below = last(&rungs);
         rungs.push(rung(
             "nee",
             PathSettings {
@@ -120,21 +165,31 @@ pub fn ladder(
                 ..mis
             },
             independent,
+            below.as_deref(),
         ));
         if features.has_hittable_lights() {
-            rungs.push(rung("mis", mis, independent));
+            rungs.push(rung("mis", mis, independent, Some("nee")));
         }
     }
-    let best = if can_sample_lights && features.has_hittable_lights() {
-        mis
+    let (best, best_name) = if can_sample_lights && features.has_hittable_lights() {
+        (mis, "mis")
     } else if can_sample_lights {
-        PathSettings {
-            mis: Mis::Off,
-            ..mis
-        }
+        (
+            PathSettings {
+                mis: Mis::Off,
+                ..mis
+            },
+            "nee",
+        )
     } else {
-        no_nee
+        (no_nee, "bsdf")
     };
+    // The rung the later ones build on, when the ladder has it (a scene with only delta lights
+    // and no BSDF to sample them has neither `bsdf` nor `nee`).
+    let best_name = rungs
+        .iter()
+        .any(|c| c.name == best_name)
+        .then_some(best_name);
     if can_sample_lights && features.light_count > 1 {
         let uniform = LightSelectionMode::Uniform;
         let ris = LightSelectionMode::Ris {
@@ -145,20 +200,31 @@ pub fn ladder(
                 light_selection,
                 ..best
             };
-            rungs.push(rung(name, settings, independent));
+            rungs.push(rung(name, settings, independent, best_name));
         }
     }
     let roulette = PathSettings {
         russian_roulette: Some(transport.roulette),
         ..best
     };
-    rungs.push(rung("+roulette", roulette, independent));
-    rungs.push(rung("+stratified", roulette, SamplerKind::Stratified));
-    rungs.push(rung("+bluenoise", roulette, SamplerKind::BlueNoise));
-    rungs.push(rung("+sobol", roulette, SamplerKind::Sobol));
+    let on_roulette = Some("+roulette");
+    rungs.push(rung("+roulette", roulette, independent, best_name));
+    rungs.push(rung(
+        "+stratified",
+        roulette,
+        SamplerKind::Stratified,
+        on_roulette,
+    ));
+    rungs.push(rung(
+        "+bluenoise",
+        roulette,
+        SamplerKind::BlueNoise,
+        on_roulette,
+    ));
+    rungs.push(rung("+sobol", roulette, SamplerKind::Sobol, on_roulette));
     rungs.push(Configuration {
         adaptive: true,
-        ..rung("+adaptive", roulette, SamplerKind::Sobol)
+        ..rung("+adaptive", roulette, SamplerKind::Sobol, Some("+sobol"))
     });
     if transport.light_tracing {
         let traced = PathSettings {
@@ -167,7 +233,12 @@ pub fn ladder(
         };
         rungs.push(Configuration {
             adaptive: true,
-            ..rung("+light-tracing", traced, SamplerKind::Sobol)
+            ..rung(
+                "+light-tracing",
+                traced,
+                SamplerKind::Sobol,
+                Some("+adaptive"),
+            )
         });
     }
     let reusing = PathSettings {
@@ -177,7 +248,12 @@ pub fn ladder(
     if transport.path_reuse && reusing.reuse_applies() {
         rungs.push(Configuration {
             adaptive: true,
-            ..rung("+path-reuse", reusing, SamplerKind::Sobol)
+            ..rung(
+                "+path-reuse",
+                reusing,
+                SamplerKind::Sobol,
+                Some("+adaptive"),
+            )
         });
     }
     // `auto` as `strata render` runs it without flags: the pilot picks its techniques.
@@ -187,6 +263,7 @@ pub fn ladder(
         sampler: auto.sampler,
         adaptive: auto.adaptive,
         trials: auto.trials,
+        builds_on: None,
     });
     rungs
 }
@@ -263,6 +340,71 @@ mod tests {
         let many = ladder(&transport(), &features(4, false), &auto_plan());
         assert!(names(&many).contains(&"uniform-lights"));
         assert!(names(&many).contains(&"ris-lights"));
+    }
+
+    #[test]
+    fn each_rung_builds_on_the_rung_whose_settings_it_changes() {
+        let rungs = ladder(
+            &SceneTransport {
+                light_tracing: true,
+                path_reuse: true,
+                ..transport()
+            },
+            &features(4, false),
+            &auto_plan(),
+        );
+        let on = |name: &str| {
+            rungs
+                .iter()
+                .find(|c| c.name == name)
+                .unwrap_or_else(|| panic!("no rung {name}"))
+                .builds_on
+                .as_deref()
+        };
+        for (name, base) in [
+            (REFERENCE, None),
+            ("bsdf", Some(REFERENCE)),
+            ("nee", Some("bsdf")),
+            ("mis", Some("nee")),
+            ("uniform-lights", Some("mis")),
+            ("ris-lights", Some("mis")),
+            ("+roulette", Some("mis")),
+            ("+stratified", Some("+roulette")),
+            ("+bluenoise", Some("+roulette")),
+            ("+sobol", Some("+roulette")),
+            ("+adaptive", Some("+sobol")),
+            ("+light-tracing", Some("+adaptive")),
+            ("+path-reuse", Some("+adaptive")),
+            ("auto", None),
+        ] {
+            assert_eq!(on(name), base, "{name}");
+        }
+        // A rung differs from its base by what its name adds, and keeps everything else: the
+        // technique lists say so.
+        let techniques = |name: &str| {
+            rungs
+                .iter()
+                .find(|c| c.name == name)
+                .expect("rung")
+                .techniques()
+        };
+        let roulette = techniques("+roulette");
+        let mis = techniques("mis");
+        assert_eq!(roulette.len(), mis.len() + 1);
+        assert!(mis.iter().all(|t| roulette.contains(t)), "{roulette:?}");
+        assert!(roulette.iter().any(|t| t.starts_with("russian-roulette")));
+        assert!(techniques("+adaptive").contains(&"adaptive-sampling".to_string()));
+        assert!(techniques("+sobol").contains(&"sampler-sobol".to_string()));
+        assert!(techniques("auto").contains(&"pilot-tries-path-reuse".to_string()));
+    }
+
+    #[test]
+    fn with_delta_lights_nee_builds_on_the_reference() {
+        let rungs = ladder(&transport(), &features(1, true), &auto_plan());
+        let nee = rungs.iter().find(|c| c.name == "nee").expect("nee rung");
+        assert_eq!(nee.builds_on.as_deref(), Some(REFERENCE));
+        let roulette = rungs.iter().find(|c| c.name == "+roulette").expect("rung");
+        assert_eq!(roulette.builds_on.as_deref(), Some("nee"));
     }
 
     #[test]

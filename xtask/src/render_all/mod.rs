@@ -1,14 +1,18 @@
 //! `cargo xtask refs` and `cargo xtask render-all`: stored high-sample references of the scene
 //! suite, and every configuration of the technique ladder rendered at a series of time budgets
-//! and measured against them.
+//! and measured against them; `cargo xtask report-check`: the report loaded in a real browser.
 
+mod browser;
 mod error_map;
 mod ladder;
 mod plot;
+mod preview;
 mod refs;
 mod report;
 mod run;
+mod summary;
 
+pub use browser::report_check;
 pub use refs::refs;
 pub use run::render_all;
 
@@ -102,4 +106,17 @@ fn parse_scene_list(value: Option<&String>) -> Result<Vec<String>, String> {
 /// Where a scene's stored reference image lives.
 fn reference_path(root: &Path, name: &str) -> PathBuf {
     root.join("scenes/refs").join(format!("{name}.exr"))
+}
+
+/// The trimmed standard output of a command, or `unknown` when it cannot run.
+fn command_output(program: &str, args: &[&str]) -> String {
+    std::process::Command::new(program)
+        .args(args)
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map_or_else(
+            || "unknown".to_string(),
+            |o| String::from_utf8_lossy(&o.stdout).trim().to_string(),
+        )
 }

@@ -7,7 +7,7 @@
 //! image made by itself. That MIS converges to the reference integrator's image is checked by
 //! the unbiasedness tests.
 
-use super::{SuiteScene, parse_scene_list, reference_path, scene_files};
+use super::{SuiteScene, command_output, parse_scene_list, reference_path, scene_files};
 use integrators::{Mis, PathSettings};
 use render::atomic_write::write_bytes_atomically;
 use render::driver::RenderOptions;
@@ -15,14 +15,13 @@ use render::session::{film_filter, render_scene};
 use render::technique::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use std::path::Path;
-use std::process::Command;
 
 /// Sampler seed of the references (render-all's configurations use other seeds).
 pub const REFERENCE_SEED: u32 = 1000;
 
 /// Samples per pixel of each scene's reference: about 80 s of rendering each on 2 threads, so
 /// that its own noise is a small part of the error measured at render-all's largest budget
-/// (2 s, so at most 1/40 of the reference's samples). The three scenes that `vs-mitsuba`
+/// (0.8 s, so at most 1/100 of the reference's samples). The three scenes that `vs-mitsuba`
 /// compares have four times that (2026-12-02): the Cornell box's reference at 3,680 spp carried
 /// about a tenth of the errors compared there, which pulled the ratio of the two renderers'
 /// errors towards 1.
@@ -120,17 +119,4 @@ pub fn refs(root: &Path, args: &[String]) -> Result<bool, String> {
         );
     }
     Ok(true)
-}
-
-/// The trimmed standard output of a command, or `unknown` when it cannot run.
-fn command_output(program: &str, args: &[&str]) -> String {
-    Command::new(program)
-        .args(args)
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map_or_else(
-            || "unknown".to_string(),
-            |o| String::from_utf8_lossy(&o.stdout).trim().to_string(),
-        )
 }

@@ -68,6 +68,7 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
                         shape: shape_index,
                         prim: u32::try_from(prim).expect("fewer than 2^32 triangles per mesh"),
                         ng,
+                        p_error: crate::triangle_point_error([p0, p1, p2]),
                     });
                     boxes.push(BvhAabb::new(
                         v[0].min(v[1]).min(v[2]),
@@ -88,6 +89,7 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
                     shape: shape_index,
                     prim: 0,
                     ng: Vec3::ZERO,
+                    p_error: crate::sphere_point_error(sphere.center, sphere.radius),
                 });
                 boxes.push(BvhAabb::new(b.min.into(), b.max.into()));
             }
@@ -110,8 +112,10 @@ pub(crate) fn build(shapes: &[Shape]) -> Built {
         sphere_infos: Vec::new(),
         bounds,
     };
+    let mut bvh2 = binary(&padded);
+    fit_to(&mut bvh2, &boxes);
     let tree = collapse(
-        &binary(&padded),
+        &bvh2,
         MAX_LEAF,
         |i| matches!(geoms[i as usize], Prim::Triangle(_)),
         |prims| {
@@ -157,8 +161,28 @@ fn binary(boxes: &[BvhAabb]) -> Bvh2 {
     bvh2
 }
 
+/// Every box of `bvh2` fitted to the primitives under it, `boxes` (by primitive index): the
+/// builder's boxes are padded to break its ties ([`tie_breaking_pad`]), but traversal is faster on
+/// tight ones: fewer of them overlap, and a ray leaving a flat surface a few ulps off it (see
+/// [`crate::offset_ray_origin`]) starts outside that surface's own box, which padding makes up to
+/// 1e-4 of its size thick, instead of entering it and testing its triangles again.
+fn fit_to(bvh2: &mut Bvh2, boxes: &[BvhAabb]) {
+    for index in 0..bvh2.nodes.len() {
+        let node = &bvh2.nodes[index];
+        if node.is_leaf() {
+            let first = node.first_index as usize;
+            let fitted = bvh2.primitive_indices[first..first + node.prim_count as usize]
+                .iter()
+                .fold(BvhAabb::empty(), |b, &i| b.union(&boxes[i as usize]));
+            bvh2.nodes[index].set_aabb(fitted);
+        }
+    }
+    bvh2.refit_all();
+}
+
 /// Box `b` of primitive `i`, grown by a pseudo-random fraction of `1e-4` of its size (plus a few
-/// ulps of its position).
+/// ulps of its position), for the build only (the built tree is fitted to the unpadded boxes,
+/// see [`fit_to`]).
 ///
 /// obvhs' PLOC builder pairs each node with the last of equally good neighbours, so identical
 /// boxes (duplicate primitives) and evenly spaced equal boxes (a row of equal spheres) merge one

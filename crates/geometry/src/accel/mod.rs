@@ -205,6 +205,7 @@ impl Accel {
                 WideHit {
                     t: hit.t,
                     p: p.into(),
+                    p_error: info.p_error.into(),
                     ng: info.ng.into(),
                     ns: ns.into(),
                     bary: b.into(),
@@ -229,6 +230,7 @@ impl Accel {
                 WideHit {
                     t,
                     p: p.into(),
+                    p_error: info.p_error.into(),
                     ng: ng.into(),
                     ns: ng.into(),
                     bary: Vec3A::ZERO,
@@ -246,6 +248,7 @@ impl Accel {
 struct WideHit {
     t: f32,
     p: Vec3A,
+    p_error: Vec3A,
     ng: Vec3A,
     ns: Vec3A,
     bary: Vec3A,
@@ -266,6 +269,7 @@ impl WideHit {
         Hit {
             t: self.t,
             p: self.p.into(),
+            p_error: self.p_error.into(),
             ng: self.ng.into(),
             ns: self.ns.into(),
             bary: self.bary.into(),

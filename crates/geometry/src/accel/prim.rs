@@ -31,13 +31,16 @@ pub(crate) enum Found {
     },
 }
 
-/// Which shape and triangle a primitive came from, and its unit geometric normal (triangles only;
-/// zero for spheres, whose normal depends on the hit point).
+/// Which shape and triangle a primitive came from, its unit geometric normal (triangles only;
+/// zero for spheres, whose normal depends on the hit point), and the error bound of its hit
+/// points ([`crate::Hit::p_error`]: [`crate::triangle_point_error`] or
+/// [`crate::sphere_point_error`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct PrimInfo {
     pub shape: u32,
     pub prim: u32,
     pub ng: Vec3,
+    pub p_error: Vec3,
 }
 
 impl PrimInfo {
@@ -46,6 +49,7 @@ impl PrimInfo {
         shape: u32::MAX,
         prim: u32::MAX,
         ng: Vec3::ZERO,
+        p_error: Vec3::ZERO,
     };
 }
 

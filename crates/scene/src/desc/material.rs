@@ -211,7 +211,8 @@ pub struct AreaEmitterDesc {
 pub enum EmitterDesc {
     /// `point`: an isotropic point light.
     Point {
-        /// World-space position (`position`, or the translation of `to_world`; default origin).
+        /// Position (`position`, or the translation of `to_world`; default the world's origin),
+        /// relative to the camera ([`crate::SensorDesc::position`]).
         position: Vec3,
         /// Radiant intensity, linear RGB, W/sr per channel (default 1).
         intensity: Vec3,
@@ -220,7 +221,8 @@ pub enum EmitterDesc {
     },
     /// `spot`: a point light shining along its axis, with Mitsuba's angular falloff.
     Spot {
-        /// World-space position (the translation of `to_world`; default origin).
+        /// Position (the translation of `to_world`; default the world's origin), relative to the
+        /// camera ([`crate::SensorDesc::position`]).
         position: Vec3,
         /// The linear part of `to_world`, whose +z column is the axis (default identity).
         axes: Mat3,

@@ -1,4 +1,5 @@
-//! The scene description produced by the loader: plain data, world space, Mitsuba defaults filled in.
+//! The scene description produced by the loader: plain data in the camera's frame, Mitsuba
+//! defaults filled in.
 
 mod material;
 mod render;
@@ -13,7 +14,12 @@ pub use render::{
 };
 pub use shape::{Geometry, MeshDesc, ShapeDesc, SphereDesc};
 
-/// Everything a Mitsuba 3 scene file says, in world space.
+/// Everything a Mitsuba 3 scene file says, in the scene frame: world space translated so that
+/// the camera sits at the origin ([`SensorDesc::position`] is where it sits in world space).
+///
+/// The loader subtracts the camera's position from every position in double precision, before
+/// rounding to `f32`: a scene 1e6 units from the world's origin keeps the precision of one at
+/// the origin, where a world-space `f32` position would be off by up to 0.03.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneDesc {
     /// The scene file this came from.

@@ -1,6 +1,6 @@
 //! Descriptions of how the scene is rendered: integrator, camera, film and sampler.
 
-use glam::Mat4;
+use glam::{DVec3, Mat4};
 
 /// Which light transport algorithm the scene asks for (`<integrator type="...">`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -65,12 +65,17 @@ pub struct ThinLensDesc {
 /// The camera (`<sensor type="perspective">` or `"thinlens"`).
 ///
 /// The camera looks down its local +z; its local +x is image-left and +y image-up (Mitsuba's
-/// convention), and `to_world` places it in the scene (rotation and translation only; mirroring is
-/// allowed, scaling is an error as in Mitsuba).
+/// convention), and its `to_world` places it in the world (rotation and translation only; mirroring
+/// is allowed, scaling is an error as in Mitsuba). The translation is kept apart, in double
+/// precision, as `position`: the description's frame is centred on the camera.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SensorDesc {
-    /// Camera-to-world transform.
+    /// Camera-to-scene-frame transform: the scene file's `to_world` without its translation (the
+    /// scene frame is world space translated by `-position`), so the camera sits at the origin.
     pub to_world: Mat4,
+    /// The camera's position in world space (world units, double precision): the translation of
+    /// the scene file's `to_world`, subtracted from every position of the description.
+    pub position: DVec3,
     /// Field of view in degrees along `fov_axis`, strictly between 0 and 180. Without `fov` it comes
     /// from `focal_length` (default 50 mm on 36×24 mm film) as Mitsuba does: a diagonal field of view.
     pub fov_deg: f32,

@@ -1,10 +1,12 @@
-//! Descriptions of shapes in world space.
+//! Descriptions of shapes in the scene frame (world space translated so that the camera sits at
+//! the origin, see [`crate::SceneDesc`]).
 
 use glam::{Mat3, Vec2, Vec3};
 
 use super::material::AreaEmitterDesc;
 
-/// A world-space triangle mesh.
+/// A triangle mesh, placed in the scene frame (see [`crate::SceneDesc`]), or in its file's own
+/// coordinates as [`crate::parse_obj`] and [`crate::parse_ply`] return it.
 ///
 /// The winding order defines the geometric normal: `(p1 - p0) × (p2 - p0)` points to the front
 /// side. `to_world` and `flip_normals` are already applied: a mirroring transform or
@@ -12,9 +14,9 @@ use super::material::AreaEmitterDesc;
 /// normals always agree in orientation (Mitsuba's current `Mesh` convention).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct MeshDesc {
-    /// Vertex positions, world space.
+    /// Vertex positions (world units).
     pub positions: Vec<Vec3>,
-    /// Unit vertex normals for smooth shading, one per position, world space (transformed by the
+    /// Unit vertex normals for smooth shading, one per position (transformed by the
     /// inverse transpose of `to_world`). `None` means flat shading with the geometric normal:
     /// `face_normals="true"`, and the flat canonical shapes (rectangle, cube, disk).
     pub normals: Option<Vec<Vec3>>,
@@ -24,10 +26,10 @@ pub struct MeshDesc {
     pub triangles: Vec<[u32; 3]>,
 }
 
-/// A world-space sphere (`<shape type="sphere">`).
+/// A sphere (`<shape type="sphere">`) in the scene frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SphereDesc {
-    /// Centre, world space.
+    /// Centre, relative to the camera (world units).
     pub center: Vec3,
     /// Radius, world units, positive.
     pub radius: f32,
@@ -55,7 +57,7 @@ pub struct ShapeDesc {
     pub plugin: String,
     /// The `id` attribute.
     pub id: Option<String>,
-    /// World-space geometry.
+    /// The geometry, in the scene frame.
     pub geometry: Geometry,
     /// Index into [`crate::SceneDesc::bsdfs`].
     pub bsdf: usize,

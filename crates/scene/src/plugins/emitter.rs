@@ -32,8 +32,9 @@ pub(crate) fn area_emitter(node: &ObjectNode) -> Result<AreaEmitterDesc> {
     })
 }
 
-/// Interprets an `<emitter>` at the top level of the scene.
-pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
+/// Interprets an `<emitter>` at the top level of the scene; positions are given relative to
+/// `origin` (world space), subtracted in double precision.
+pub(crate) fn scene_emitter(node: &ObjectNode, origin: DVec3) -> Result<EmitterDesc> {
     no_children(node)?;
     let mut params = Params::new(node);
     let emitter = match node.plugin.as_str() {
@@ -51,14 +52,14 @@ pub(crate) fn scene_emitter(node: &ObjectNode) -> Result<EmitterDesc> {
                 (None, None) => DVec3::ZERO,
             };
             EmitterDesc::Point {
-                position: position.as_vec3(),
+                position: (position - origin).as_vec3(),
                 intensity: params
                     .color("intensity", ColorKind::Emission, 1.0)?
                     .as_vec3(),
                 sampling_weight: sampling_weight(&mut params)?,
             }
         }
-        "spot" => spot(&mut params)?,
+        "spot" => spot(&mut params, origin)?,
         "directional" => directional(&mut params)?,
         "constant" => EmitterDesc::Constant {
             radiance: params
@@ -129,8 +130,9 @@ fn envmap(params: &mut Params) -> Result<EmitterDesc> {
 }
 
 /// `spot`: placed and aimed by `to_world` (+z is the axis), with Mitsuba's `cutoff_angle`
-/// (default 20°) and `beam_width` (default 3/4 of the cutoff). Projected textures are refused.
-fn spot(params: &mut Params) -> Result<EmitterDesc> {
+/// (default 20°) and `beam_width` (default 3/4 of the cutoff), its position relative to `origin`.
+/// Projected textures are refused.
+fn spot(params: &mut Params, origin: DVec3) -> Result<EmitterDesc> {
     if params.has("texture") {
         return Err(params
             .loc_of("texture")
@@ -159,7 +161,7 @@ fn spot(params: &mut Params) -> Result<EmitterDesc> {
         )));
     }
     Ok(EmitterDesc::Spot {
-        position: to_world.transform_point3(DVec3::ZERO).as_vec3(),
+        position: (to_world.transform_point3(DVec3::ZERO) - origin).as_vec3(),
         axes: axes.as_mat3(),
         intensity: params
             .color("intensity", ColorKind::Emission, 1.0)?

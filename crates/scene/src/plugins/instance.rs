@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use glam::DMat4;
+use glam::{DMat4, DVec3};
 
 use super::bsdf::BsdfTable;
 use super::shape::{check_invertible, place_sphere, shape};
@@ -43,12 +43,13 @@ impl<'a> ShapeGroups<'a> {
         })
     }
 
-    /// The world-space shapes of the `instance` element `node`: its group's shapes moved by its
-    /// `to_world` (default identity).
+    /// The shapes of the `instance` element `node`: its group's shapes moved by its `to_world`
+    /// (default identity), relative to `origin` (world space; subtracted in double precision).
     pub fn instance(
         &mut self,
         node: &'a ObjectNode,
         bsdfs: &mut BsdfTable<'a>,
+        origin: DVec3,
     ) -> Result<Vec<ShapeDesc>> {
         let [Child::Ref(reference)] = node.children.as_slice() else {
             let allowed = "one <ref id=\"...\"/> to a shapegroup";
@@ -61,6 +62,7 @@ impl<'a> ShapeGroups<'a> {
         let to_world = params.transform("to_world")?.unwrap_or(DMat4::IDENTITY);
         let to_world_loc = params.loc_of("to_world");
         check_invertible(&to_world, to_world_loc)?;
+        let to_world = DMat4::from_translation(-origin) * to_world;
         params.finish()?;
         let id = reference.id.as_str();
         let Some(&group) = self.nodes.get(id) else {
@@ -129,7 +131,7 @@ fn group_shapes<'a>(group: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Result<
                 .loc
                 .error("a shapegroup cannot hold shapegroups or instances"));
         }
-        let shape = shape(object, bsdfs)?;
+        let shape = shape(object, bsdfs, DVec3::ZERO)?;
         if shape.emitter.is_some() {
             return Err(object
                 .loc

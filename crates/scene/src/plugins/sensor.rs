@@ -123,7 +123,14 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
     params.finish()?;
     Ok(Camera {
         sensor: SensorDesc {
-            to_world: to_world.as_mat4(),
+            to_world: DMat4::from_cols(
+                to_world.x_axis,
+                to_world.y_axis,
+                to_world.z_axis,
+                glam::DVec4::W,
+            )
+            .as_mat4(),
+            position: to_world.w_axis.truncate(),
             fov_deg: fov_deg as f32,
             fov_axis,
             near_clip: near_clip as f32,

@@ -28,8 +28,13 @@ const SUPPORTED: [&str; 8] = [
     "cylinder",
 ];
 
-/// Interprets a `<shape>` element; its BSDF goes into `bsdfs`.
-pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Result<ShapeDesc> {
+/// Interprets a `<shape>` element, placed relative to `origin` (world space: its `to_world`
+/// followed by a translation by `-origin`, in double precision); its BSDF goes into `bsdfs`.
+pub(crate) fn shape<'a>(
+    node: &'a ObjectNode,
+    bsdfs: &mut BsdfTable<'a>,
+    origin: DVec3,
+) -> Result<ShapeDesc> {
     if !SUPPORTED.contains(&node.plugin.as_str()) {
         return Err(unknown_type(node, &SUPPORTED));
     }
@@ -60,6 +65,7 @@ pub(crate) fn shape<'a>(node: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Resu
     let to_world = params.transform("to_world")?.unwrap_or(DMat4::IDENTITY);
     let to_world_loc = params.loc_of("to_world");
     check_invertible(&to_world, to_world_loc)?;
+    let to_world = DMat4::from_translation(-origin) * to_world;
     let flip_normals = params.boolean_or("flip_normals", false)?;
     let geometry = match node.plugin.as_str() {
         "sphere" => Geometry::Sphere(sphere(&mut params, &to_world, flip_normals)?),
