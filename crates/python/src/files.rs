@@ -64,7 +64,10 @@ pub fn merge(
         py.detach(|| write_film_exr(out, &film, &record))
             .map_err(os_error)?;
     }
-    Ok((image_array(py, &film.to_image())?, record_dict(py, &record)?))
+    Ok((
+        image_array(py, &film.to_image())?,
+        record_dict(py, &record)?,
+    ))
 }
 
 /// `array` (shape `(height, width, 3)`) as an image.

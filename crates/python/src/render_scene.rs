@@ -7,8 +7,8 @@ use std::time::Instant;
 use numpy::{PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use render::driver::RenderOptions;
-use render::filter::Filter;
 use render::film_exr::write_film_exr;
+use render::filter::Filter;
 use render::fingerprint::scene_fingerprint;
 use render::image::Image;
 use render::session::{film_filter, render_scene};
@@ -68,7 +68,8 @@ impl RenderRequest {
         flag("--seed", self.seed.map(|s| s.to_string()));
         flag(
             "--adaptive",
-            self.adaptive.map(|a| if a { "on" } else { "off" }.to_string()),
+            self.adaptive
+                .map(|a| if a { "on" } else { "off" }.to_string()),
         );
         flag("--max-depth", self.max_depth.map(|d| d.to_string()));
         flag("--samples", self.samples.map(|(a, b)| format!("{a}..{b}")));
@@ -148,7 +149,10 @@ impl Scene {
             .map_err(|e| value_error(format!("{}: {e}", self.path.display())))?;
         let mut stats = RenderStats::of_render(&output, counters, &plan, scene.camera.has_lens());
         stats.load_seconds = self.load_seconds;
-        *self.last_stats.lock().unwrap_or_else(PoisonError::into_inner) = Some(stats.to_json());
+        *self
+            .last_stats
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner) = Some(stats.to_json());
         if let Some(interrupt) = outcome.interrupt {
             return Err(interrupt);
         }
@@ -170,11 +174,7 @@ impl Scene {
 /// `image` as a `float32` array of shape `(height, width, 3)`.
 pub fn image_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {
     let values: Vec<f32> = image.data.iter().flat_map(|v| v.to_array()).collect();
-    numpy::PyArray1::from_vec(py, values).reshape([
-        image.height as usize,
-        image.width as usize,
-        3,
-    ])
+    numpy::PyArray1::from_vec(py, values).reshape([image.height as usize, image.width as usize, 3])
 }
 
 #[pymethods]

@@ -158,9 +158,7 @@ impl Domain {
             Self::UniformHemisphere if p[2] >= 0.0 => warp::uniform_hemisphere_pdf(),
             Self::CosineHemisphere => warp::cosine_hemisphere_pdf(p[2]),
             Self::UniformSphere => warp::uniform_sphere_pdf(),
-            Self::ConcentricDisk if p[0] * p[0] + p[1] * p[1] <= 1.0 => {
-                warp::concentric_disk_pdf()
-            }
+            Self::ConcentricDisk if p[0] * p[0] + p[1] * p[1] <= 1.0 => warp::concentric_disk_pdf(),
             Self::UniformCone(cos_max) if p[2] >= cos_max => warp::uniform_cone_pdf(cos_max),
             Self::UniformTriangle(area) if p.iter().all(|&b| b >= 0.0) => {
                 warp::uniform_triangle_pdf(area)
