@@ -1,6 +1,7 @@
 """strata.distributed on a LocalCluster of two worker processes: the merged render is the
-single-machine render bit for bit, also when a worker is killed mid-render; a worker that reads
-another scene is refused; a bad scene fails before anything is submitted."""
+single-machine render bit for bit, also when a worker is killed mid-render or a piece raises
+and is retried; a worker that reads another scene is refused; a bad scene fails before anything
+is submitted."""
 
 import concurrent.futures
 import os
@@ -91,6 +92,52 @@ def test_a_worker_killed_mid_render_has_its_piece_rerun_with_identical_result(tw
     with pytest.raises(ProcessLookupError):
         os.kill(pids[victim], 0)
     single, _ = cli_render(scene_path, "-D", "res=96", "--spp", "512", "--seed", "2",
+                           "--integrator", "mis")
+    assert np.array_equal(bits(image), bits(strata.read_exr(single)))
+
+
+def make_first_piece_fail_once_per_worker(dask_worker):
+    """On a worker: the piece starting at sample 0 raises the first time this worker runs it.
+    Tasks name `strata.distributed.render_piece` by reference, so replacing the module's
+    function replaces what the worker runs."""
+    import strata.distributed as d
+
+    original = d.render_piece
+    dask_worker.strata_failures = 0
+
+    def flaky(scene_path, defines, start, end, spp, options):
+        if start == 0 and dask_worker.strata_failures == 0:
+            dask_worker.strata_failures += 1
+            raise OSError("injected failure of the first piece")
+        return original(scene_path, defines, start, end, spp, options)
+
+    flaky.original = original
+    d.render_piece = flaky
+
+
+def restore_render_piece():
+    import strata.distributed as d
+
+    d.render_piece = getattr(d.render_piece, "original", d.render_piece)
+
+
+def test_a_piece_that_raises_is_retried_with_identical_result(two_workers, cli_render):
+    client = two_workers
+    scene_path = SCENES / "cbox.xml"
+    options = dict(shards=2, seed=3, integrator="mis", res=16)
+    client.run(make_first_piece_fail_once_per_worker)
+    try:
+        image = strata.distributed.render(scene_path, 16, client, **options)
+        failures = client.run(lambda dask_worker: dask_worker.strata_failures)
+        assert sum(failures.values()) >= 1, failures
+        # Without retries the same failure reaches the caller.
+        client.run(restore_render_piece)
+        client.run(make_first_piece_fail_once_per_worker)
+        with pytest.raises(OSError, match="injected failure"):
+            strata.distributed.render(scene_path, 16, client, retries=0, **options)
+    finally:
+        client.run(restore_render_piece)
+    single, _ = cli_render(scene_path, "-D", "res=16", "--spp", "16", "--seed", "3",
                            "--integrator", "mis")
     assert np.array_equal(bits(image), bits(strata.read_exr(single)))
 
