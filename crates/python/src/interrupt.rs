@@ -5,8 +5,10 @@
 //! on a thread of its own (which hands the work to Rayon's pool), while the calling thread waits
 //! for it with the GIL released, attaching every [`POLL`] to check for signals. A signal's
 //! exception raises the render's [`StopSignal`]: the driver stops at its next pass boundary
-//! (passes last at most about a second, [`render::budget::MAX_PASS_SECONDS`]), the thread ends,
-//! and the exception is raised in Python. No render work outlives the call.
+//! (the package plans passes of at most [`PASS_SECONDS`], a quarter of the command line's
+//! [`render::budget::MAX_PASS_SECONDS`]), the thread ends, and the exception is raised in
+//! Python: once the first pass (1 sample per pixel) is done, within about a quarter second of
+//! the signal. No render work outlives the call.
 
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
@@ -17,6 +19,11 @@ use render::stop::StopSignal;
 
 /// How often the waiting thread checks for signals.
 pub const POLL: Duration = Duration::from_millis(50);
+
+/// Longest a pass of the package's renders is planned to take, in seconds: a stop waits for the
+/// pass under way, so this (with [`POLL`]) bounds how long Ctrl-C takes. Passes never change a
+/// render's image, only how often the driver looks up from its work.
+pub const PASS_SECONDS: f64 = 0.25;
 
 /// What [`run`] did: the work's result, and the exception a signal raised while it ran (the
 /// work was then asked to stop through the [`StopSignal`]).

@@ -138,6 +138,7 @@ impl Scene {
         let options = RenderOptions {
             stop: Some(stop.clone()),
             resume: piece,
+            max_pass_seconds: interrupt::PASS_SECONDS,
             ..RenderOptions::quiet()
         };
         let (scene, filter) = (&self.scene, &self.filter);

@@ -96,6 +96,19 @@ impl RenderBudget {
     ///
     /// How the samples are split into passes never changes the image (see [`crate::driver`]).
     pub fn next_pass_spp(&self, spp_done: u32, elapsed: f64, last_pass: u32) -> u32 {
+        self.next_pass_spp_within(spp_done, elapsed, last_pass, MAX_PASS_SECONDS)
+    }
+
+    /// [`next_pass_spp`](Self::next_pass_spp) with passes planned to last at most
+    /// `max_pass_seconds` instead of [`MAX_PASS_SECONDS`] (a render that must stop sooner when
+    /// asked: the Python package's).
+    pub fn next_pass_spp_within(
+        &self,
+        spp_done: u32,
+        elapsed: f64,
+        last_pass: u32,
+        max_pass_seconds: f64,
+    ) -> u32 {
         let remaining_spp = self
             .max_spp
             .map_or(u32::MAX - spp_done, |max| max.saturating_sub(spp_done));
@@ -110,7 +123,7 @@ impl RenderBudget {
             return 0;
         }
         let seconds_per_spp = elapsed / f64::from(spp_done);
-        let pass_seconds = remaining_seconds.min(MAX_PASS_SECONDS);
+        let pass_seconds = remaining_seconds.min(max_pass_seconds);
         let fitting = if seconds_per_spp > 0.0 {
             pass_seconds / seconds_per_spp
         } else {
@@ -217,6 +230,23 @@ mod tests {
             }
             .next_pass_spp(0, 0.0, 0),
             0
+        );
+    }
+
+    #[test]
+    fn a_shorter_pass_limit_plans_shorter_passes() {
+        let budget = RenderBudget::spp(1000);
+        // 0.1 s per spp: 10 fit in the default second, 2 in a quarter of one.
+        assert_eq!(budget.next_pass_spp(30, 3.0, 16), 10);
+        assert_eq!(budget.next_pass_spp_within(30, 3.0, 16, 0.25), 2);
+        assert_eq!(
+            budget.next_pass_spp_within(30, 3.0, 16, 0.01),
+            1,
+            "never less than one"
+        );
+        assert_eq!(
+            budget.next_pass_spp_within(30, 3.0, 16, MAX_PASS_SECONDS),
+            budget.next_pass_spp(30, 3.0, 16)
         );
     }
 

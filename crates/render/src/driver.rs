@@ -18,6 +18,7 @@ use rayon::prelude::*;
 
 pub use crate::adaptive::Allocation;
 use crate::auto::TechniquePilot;
+use crate::budget::MAX_PASS_SECONDS;
 pub use crate::budget::{BudgetError, RenderBudget};
 use crate::film::{Film, PixelSum};
 use crate::progress::Progress;
@@ -42,6 +43,10 @@ pub struct RenderOptions {
     /// budget's samples per pixel. With an allocation the budget's `max_spp` is the mean over
     /// pixels, and pixel `p` takes sample indices `0 .. allocation.samples(p, mean)`.
     pub allocation: Option<Arc<Allocation>>,
+    /// Longest a pass is planned to take once the speed is measured, in seconds:
+    /// [`MAX_PASS_SECONDS`] unless a caller must stop sooner when asked (a stop waits for the
+    /// pass under way). With a sample budget the image does not depend on it.
+    pub max_pass_seconds: f64,
 }
 
 impl RenderOptions {
@@ -53,6 +58,7 @@ impl RenderOptions {
             stop: None,
             resume: None,
             allocation: None,
+            max_pass_seconds: MAX_PASS_SECONDS,
         }
     }
 }
@@ -271,8 +277,12 @@ where
     let (mut spp, mut last_pass) = (resumed_spp, 0u32);
     let mut interrupted = false;
     loop {
-        let pass_spp =
-            run_budget.next_pass_spp(spp - resumed_spp, start.elapsed().as_secs_f64(), last_pass);
+        let pass_spp = run_budget.next_pass_spp_within(
+            spp - resumed_spp,
+            start.elapsed().as_secs_f64(),
+            last_pass,
+            options.max_pass_seconds,
+        );
         if pass_spp == 0 {
             break;
         }

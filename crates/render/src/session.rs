@@ -151,6 +151,7 @@ fn choose_techniques(
     let start = std::time::Instant::now();
     let quiet = RenderOptions {
         stop: options.stop.clone(),
+        max_pass_seconds: options.max_pass_seconds,
         ..RenderOptions::quiet()
     };
     let skipped = |reason: String| {
