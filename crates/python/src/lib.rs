@@ -3,7 +3,8 @@
 //! and exact merge, image metrics, and the `sampling` crate's generators and warps.
 //!
 //! The Python layer (`python/strata/`) adds the keyword-argument conveniences, the one-call
-//! `strata.render`, `strata.sampling` and `strata.distributed`; see the book's Python chapter.
+//! `strata.render`, `strata.sampling` and `strata.distributed`; see the book's page "Python and
+//! Dask" (`docs/src/guide/python.md`).
 //! Images are `float32` arrays of shape `(height, width, 3)`, top row first, linear RGB.
 
 #![warn(missing_docs)]

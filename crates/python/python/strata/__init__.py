@@ -9,11 +9,12 @@
 `Scene.render` renders exactly as `strata render` does with the same flags: its array holds the
 very values the command writes to its EXR. The scene is parsed and its BVH built once, in
 `load`; every render reuses them. Rendering runs on Rayon's threads with the GIL released, and
-Ctrl-C stops it at the next pass boundary (within about a second) with `KeyboardInterrupt`.
+Ctrl-C stops it at the next pass boundary (within a second) with `KeyboardInterrupt`.
 
 `strata.sampling` exposes the random number generator, warps with their pdfs and inverses, and
 the samplers; `strata.distributed` splits one render over a Dask cluster, bit-identical to a
-single-machine render. The book's "Python" chapter documents all of it.
+single-machine render. The book's page "Python and Dask" (docs/src/guide/python.md) documents
+all of it.
 """
 
 import os as _os
