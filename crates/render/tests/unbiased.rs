@@ -1,79 +1,211 @@
-//! Every technique switch converges to the reference integrator's image, on every scene of the
-//! suite; and light-only, BSDF-only and MIS converge to the same image.
+//! Every technique switch, and every choice `auto` can make, converges to the reference
+//! integrator's image on every scene of the suite; and light-only, BSDF-only and MIS converge
+//! to the same image.
 //!
-//! Per block of pixels and channel a z-test (see `common::z_test`) at a family-wise α = 0.01 with
-//! Šidák correction over all block-channels; at least 99.75% must pass (the allowance covers
-//! blocks whose variance estimate is itself noisy, as in Mitsuba's `test_renders.py`). Seeds are
-//! fixed; a failure prints the scene, configuration, worst block, spp and seeds to replay it.
+//! **Oracle.** The reference integrator (uniform directions, emission on hit, no tricks) with
+//! the independent sampler, at the depth of the scene's test version. It never shares an
+//! estimator with the configuration under test.
 //!
-//! Veach's scene is the exception: its oracle is MIS at a high sample count (see [`Oracle`]).
+//! **Test.** Each configuration and the oracle are rendered [`REPLICATES`] times with different
+//! seeds, and `common::compare` compares their replicate means on the whole image, on 8 × 8
+//! regions and on 4 × 4 blocks with Welch's t-test, the variance of each from the spread over
+//! the replicates (which stay independent whatever a render correlates: path reuse's blocks,
+//! light tracing's splats, the samplers' patterns). Significance: a family-wise α =
+//! [`SCENE_ALPHA`] (0.01) per scene version over every comparison its test makes (Bonferroni
+//! over at most [`MAX_COMPARISONS`], so [`ALPHA`] ≈ 4.2e-4 per comparison of a configuration
+//! with the oracle), a third of that per level (Bonferroni), Šidák's correction within a level.
+//! Every test must pass. Over the suite's 22 scene versions, a new realisation of every sample
+//! (a change of seeds or of the dimension order) fails a correct renderer somewhere with
+//! probability at most 1 − 0.99²² ≈ 20%; at 0.01 per comparison (the first version of this
+//! test) it was expected to fail about three of its ~340 comparisons.
 //!
-//! `cargo test` runs two scenes that exercise every kind of light and BSDF; the rest are marked
-//! `#[ignore]` and run in `cargo xtask check`, because the reference integrator (uniform
-//! directions, emission only on hit) needs hundreds of thousands of samples per pixel to see the
-//! small lights of some of them.
+//! **Configurations.** Every switch of the path integrator on MIS (power heuristic,
+//! power-proportional light choice) with the Sobol sampler, `auto`'s default, whose stratified
+//! pixel positions keep the edges of directly seen lights from dominating the image's variance;
+//! the other samplers as configurations of their own; switches that change nothing on a scene
+//! (light tracing without a light it can trace from, uniform light choice with one light) left
+//! out. On the scenes that exercise `auto`'s trials, every candidate its pilot can choose and
+//! `auto` end to end (see [`check_auto`]).
+//!
+//! **Power.** Each comparison is repeated on the configuration's image × (1 + bias) and on it
+//! with a typical 4 × 4 block × (1 + bias), and must reject both (see `common::compare`): 0.5%
+//! of the image and 5% of a block ([`Budget::full`]), except on the scenes whose oracle cannot
+//! converge that far in a test's time, which declare the biases they see ([`Budget::reduced`]).
+//! The budgets were chosen from the standard errors measured on each scene (at 16 replicates),
+//! so that each bias is about 6 standard errors or more of the image test and 7.3 of the block
+//! test, where the thresholds are about 4.3 and 5.5 (Student's t at these levels with 30–60
+//! degrees of freedom); a run prints each comparison's standard errors and how many standard
+//! errors each bias is.
+//!
+//! **Scene versions.** Scenes are rendered at [`SIZE`]² pixels. Where the reference integrator
+//! cannot find a scene's lights often enough to converge in the time of a test run (its
+//! standard error falls as one over the square root of the samples, and a small light is found
+//! by a uniform direction once in hundreds or thousands), the test renders a version of the
+//! scene with larger lights, named in each test with the edit; the code paths are the same.
+//!
+//! **Replay.** Seeds are fixed (oracle from [`ORACLE_SEED`], configurations from
+//! [`CONFIG_SEED`]); a failure names the scene, the configuration, both replicate sets (seeds,
+//! samples per pixel, size) and the worst unit of each level.
 
 mod common;
 
-use common::{
-    Configuration, Target, configurations, film_mean, load_file, mis_power, render, scenes_dir,
-    z_test, z_test_correlated,
-};
-use integrators::{Mis, PathSettings};
-use render::technique::Transport;
+use common::compare::{POWER, Power, Replicates, check_unbiased, compare, student_t_threshold};
+use common::{Configuration, configurations_with, load_version, mis_power, scenes_dir};
+use integrators::{LightSelectionMode, LightTracer, Mis, PathReuse, PathSettings};
+use render::auto::{REUSE_BLOCK, RIS_CANDIDATES, Trials};
+use render::technique::{RenderPlan, Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
+use scene::RenderScene;
 
-const SIZE: u32 = 24;
-const ALPHA: f64 = 0.01;
-const REQUIRED_PASS_FRACTION: f64 = 0.9975;
-const REFERENCE_SEED: u32 = 1;
-const CONFIG_SEED: u32 = 2;
+/// Image edge, pixels, of every scene's test version.
+const SIZE: u32 = 16;
+/// Family-wise significance level of one scene version's test: of every comparison it makes.
+const SCENE_ALPHA: f64 = 0.01;
+/// The most comparisons one scene version makes: 13 configurations, light-only and BSDF-only
+/// against MIS, 7 of `auto`'s candidates and `auto` end to end (23); `check_scene` asserts it.
+const MAX_COMPARISONS: usize = 24;
+/// Family-wise significance level of one comparison (Bonferroni over the scene's comparisons).
+const ALPHA: f64 = SCENE_ALPHA / MAX_COMPARISONS as f64;
+/// Independent renders of each configuration and of the oracle.
+const REPLICATES: u32 = 32;
+/// Independent renders of `auto` end to end (each runs its pilots, so each needs enough samples
+/// per pixel for them: [`Auto::spp`]).
+const AUTO_REPLICATES: u32 = 16;
+/// First seed of the oracle's replicates.
+const ORACLE_SEED: u32 = 1000;
+/// First seed of every configuration's replicates.
+const CONFIG_SEED: u32 = 2000;
 
-/// Budgets of one scene's test.
-struct Budget {
-    /// What every configuration is compared with.
-    oracle: Oracle,
-    /// Samples per pixel of each configuration with MIS.
-    config_spp: u32,
-    /// Samples per pixel of the configurations without MIS (BSDF-only, light-only): where one
-    /// strategy is poor (a small light hit by BSDF samples, a glossy lobe met by light samples)
-    /// their estimates are heavy-tailed, and at low counts both their mean and their variance
-    /// estimate fall short.
-    unweighted_spp: u32,
-    /// When set, the configurations without MIS are judged by their image mean's relative
-    /// difference from the oracle's (at most this) instead of the per-block z-test: on Veach's
-    /// scene and among 64 small lights each of them misses contributions that arrive once in
-    /// millions of samples (a small light seen through a GGX tail by BSDF samples, a narrow lobe
-    /// met by light samples), so no affordable count gives them a trustworthy variance estimate.
-    unweighted_mean_tolerance: Option<f64>,
-    /// Edge of the pixel blocks tested.
-    block: u32,
-    /// Configurations left out, by label, where their estimator is too heavy-tailed for any
-    /// affordable count to judge (each test says why).
-    excluded: &'static [&'static str],
+/// The seeds of a replicate set starting at `first`.
+fn seeds(first: u32) -> std::ops::Range<u32> {
+    first..first + REPLICATES
 }
 
-/// The image every configuration must agree with.
+/// The test version of a scene file.
 #[derive(Clone, Copy)]
-enum Oracle {
-    /// The reference integrator (no tricks) at this many samples per pixel.
-    Reference { spp: u32 },
-    /// MIS (power heuristic) at this many samples per pixel with another seed, where the
-    /// reference integrator cannot converge in any affordable time (Veach's α = 0.005 plate: a
-    /// uniform direction lands in its lobe about once in 10⁵ samples). MIS itself agrees with
-    /// the reference integrator on every other scene.
-    HighSampleMis { spp: u32 },
+struct Version {
+    /// The file, relative to `scenes/`.
+    file: &'static str,
+    /// Edits of its text (see `common::load_version`).
+    replace: &'static [(&'static str, &'static str)],
+    /// Its `$NAME` defaults set.
+    overrides: &'static [(&'static str, &'static str)],
+    /// The integrator's `max_depth`, when not the file's.
+    max_depth: Option<i32>,
 }
 
-/// Every configuration against the oracle on `name`, and the three transport strategies
-/// (light-only, BSDF-only, MIS) against each other.
-fn check_scene(name: &str, budget: Budget) {
-    check_scene_with(name, &[], budget);
+impl Version {
+    /// The scene file as it is.
+    const fn file(file: &'static str) -> Self {
+        Self {
+            file,
+            replace: &[],
+            overrides: &[],
+            max_depth: None,
+        }
+    }
+
+    fn load(&self) -> RenderScene {
+        load_version(
+            &scenes_dir().join(self.file),
+            self.replace,
+            self.overrides,
+            SIZE,
+            self.max_depth,
+        )
+    }
 }
 
-/// [`check_scene`] with the scene's `$NAME` defaults set as `overrides` gives them.
-fn check_scene_with(name: &str, overrides: &[(&str, &str)], budget: Budget) {
-    let scene = load_file(&scenes_dir().join(name), overrides, SIZE, SIZE);
+/// Samples per pixel of each replicate.
+#[derive(Clone, Copy)]
+struct Budget {
+    /// Of the oracle.
+    oracle: u32,
+    /// Of each configuration.
+    config: u32,
+    /// Of the configurations whose estimators are poor on the scene (without MIS, or with the
+    /// independent sampler, whose random pixel positions make the edges of directly seen lights
+    /// noisy), as a multiple of `config`.
+    heavy_factor: u32,
+    /// The biases every comparison must see.
+    power: Power,
+}
+
+impl Budget {
+    /// Full power: 0.5% of the image, 5% of a block.
+    const fn full(oracle: u32, config: u32, heavy_factor: u32) -> Self {
+        Self {
+            oracle,
+            config,
+            heavy_factor,
+            power: POWER,
+        }
+    }
+
+    /// Less power, where the reference integrator cannot converge on the scene in a test's time:
+    /// the smallest biases of the image and of a block (relative) every comparison sees.
+    const fn reduced(oracle: u32, config: u32, heavy_factor: u32, image: f64, block: f64) -> Self {
+        Self {
+            oracle,
+            config,
+            heavy_factor,
+            power: Power { image, block },
+        }
+    }
+}
+
+/// What `auto` is tested with on a scene (see [`check_auto`]).
+#[derive(Clone, Copy)]
+struct Auto {
+    /// The trials its plan must make on the scene.
+    trials: Trials,
+    /// Samples per pixel of each end-to-end replicate (the technique pilot runs only where it
+    /// takes at most a tenth of them).
+    spp: u32,
+}
+
+/// Whether a configuration is rendered at [`Budget::heavy_factor`] times the samples.
+fn is_heavy(configuration: &Configuration) -> bool {
+    configuration.settings.mis == Mis::Off || configuration.sampler == SamplerKind::Independent
+}
+
+/// The oracle's replicates.
+fn oracle(scene: &RenderScene, budget: Budget) -> Replicates {
+    Replicates::render(
+        scene,
+        "reference",
+        seeds(ORACLE_SEED),
+        budget.oracle,
+        |seed| {
+            RenderPlan::fixed_spp(
+                common::reference(scene),
+                SamplerKind::Independent,
+                seed,
+                budget.oracle,
+            )
+        },
+    )
+}
+
+/// Whether `configuration` renders the same estimator as MIS on `scene` (a switch that finds
+/// nothing to do), so that rendering it again would test nothing new.
+fn changes_nothing(scene: &RenderScene, configuration: &Configuration) -> bool {
+    let settings = &configuration.settings;
+    match configuration.label {
+        "light tracing" => {
+            LightTracer::new(&scene.world, settings, scene.camera.has_lens()).is_none()
+        }
+        "mis power uniform selection" => scene.features.light_count <= 1,
+        _ => false,
+    }
+}
+
+/// Every configuration (switches on MIS with the Sobol sampler, and the other samplers) against
+/// the oracle on `version` of `name`, light-only and BSDF-only against MIS, and `auto` when
+/// `auto` says how.
+fn check_scene(name: &str, version: Version, budget: Budget, auto: Option<Auto>) {
+    let scene = version.load();
+    let oracle = oracle(&scene, budget);
     let base = PathSettings {
         skip_null_vertices: scene.desc.integrator.skip_null_vertices,
         ..mis_power(
@@ -81,141 +213,163 @@ fn check_scene_with(name: &str, overrides: &[(&str, &str)], budget: Budget) {
             scene.desc.integrator.hide_emitters,
         )
     };
-    let (oracle, reference_spp, oracle_name) = match budget.oracle {
-        Oracle::Reference { spp } => (common::reference(&scene), spp, "reference"),
-        Oracle::HighSampleMis { spp } => (Transport::Path(base), spp, "high-spp mis"),
-    };
-    let reference = render(
-        &scene,
-        oracle,
-        SamplerKind::Independent,
-        reference_spp,
-        REFERENCE_SEED,
-        &format!("{name} / {oracle_name}"),
-    );
     let mut failures = Vec::new();
-    let mut films = Vec::new();
-    for Configuration {
-        label,
-        settings,
-        sampler,
-    } in configurations(base)
-    {
-        if budget.excluded.contains(&label) {
+    let mut comparisons = 0;
+    let mut rendered = Vec::new();
+    for configuration in configurations_with(base, SamplerKind::Sobol) {
+        if changes_nothing(&scene, &configuration) {
             continue;
         }
-        let spp = if settings.mis == Mis::Off {
-            budget.unweighted_spp
+        let spp = if is_heavy(&configuration) {
+            budget.config * budget.heavy_factor
         } else {
-            budget.config_spp
+            budget.config
         };
-        let film = render(
-            &scene,
-            Transport::Path(settings),
+        let Configuration {
+            label,
+            settings,
             sampler,
-            spp,
-            CONFIG_SEED,
-            &format!("{name} / {label}"),
-        );
-        let replay = format!(
-            "config {spp} spp seed {CONFIG_SEED}, {oracle_name} {reference_spp} spp seed \
-             {REFERENCE_SEED}, {SIZE}x{SIZE}"
-        );
-        match budget.unweighted_mean_tolerance {
-            Some(tolerance) if settings.mis == Mis::Off => {
-                let (mean, oracle_mean) = (film_mean(&film), film_mean(&reference));
-                let difference = (mean - oracle_mean) / oracle_mean;
-                println!(
-                    "figure: {name} / {label}: image mean {mean:.5}, {oracle_name} {oracle_mean:.5} \
-                     ({:+.2}%, at most {:.0}%)",
-                    100.0 * difference,
-                    100.0 * tolerance
-                );
-                if difference.abs() > tolerance {
-                    failures.push(format!(
-                        "{name} / {label}: image mean {mean} differs from {oracle_mean} by more \
-                         than {tolerance} ({replay})"
-                    ));
-                }
-            }
-            _ => {
-                let test = if settings.path_reuse.is_some() {
-                    z_test_correlated
-                } else {
-                    z_test
-                };
-                let outcome = test(&film, Target::Film(&reference), budget.block, ALPHA);
-                println!("figure: {name} / {label} vs {oracle_name}: {outcome}");
-                if outcome.pass_fraction < REQUIRED_PASS_FRACTION {
-                    failures.push(format!(
-                        "{name} / {label}: {outcome} ({replay}, {b}x{b} blocks)",
-                        b = budget.block
-                    ));
-                }
-            }
+        } = configuration;
+        let replicates = Replicates::render(&scene, label, seeds(CONFIG_SEED), spp, |seed| {
+            RenderPlan::fixed_spp(Transport::Path(settings), sampler, seed, spp)
+        });
+        comparisons += 1;
+        if let Err(failure) = check_unbiased(name, &replicates, &oracle, ALPHA, budget.power) {
+            failures.push(failure);
         }
-        films.push((label, film));
+        rendered.push(replicates);
     }
-    let film = |label: &str| &films.iter().find(|(l, _)| *l == label).expect(label).1;
-    let mis = film("mis power");
-    let others = if budget.unweighted_mean_tolerance.is_some() {
-        [].as_slice()
-    } else {
-        ["bsdf-only", "light-only (nee, no mis)"].as_slice()
+    let find = |label: &str| {
+        rendered
+            .iter()
+            .find(|r| r.label == label)
+            .unwrap_or_else(|| panic!("{label} was rendered"))
     };
-    for other in others {
-        let outcome = z_test(film(other), Target::Film(mis), budget.block, ALPHA);
+    let mis = find("mis power");
+    for other in ["bsdf-only", "light-only (nee, no mis)"] {
+        comparisons += 1;
+        let outcome = compare(find(other), mis, ALPHA);
         println!("figure: {name} / {other} vs mis power: {outcome}");
-        if outcome.pass_fraction < REQUIRED_PASS_FRACTION {
+        if !outcome.passed() {
             failures.push(format!(
-                "{name} / {other} vs mis power: {outcome} (seed {CONFIG_SEED}, {} and {} spp)",
-                budget.unweighted_spp, budget.config_spp
+                "{name}: {} and {} differ: {outcome}",
+                find(other).replay(),
+                mis.replay()
             ));
         }
     }
+    if let Some(auto) = auto {
+        let (auto_failures, auto_comparisons) = check_auto(name, &scene, &oracle, budget, auto);
+        failures.extend(auto_failures);
+        comparisons += auto_comparisons;
+    }
+    assert!(
+        comparisons <= MAX_COMPARISONS,
+        "{name}: {comparisons} comparisons, but ALPHA is shared by {MAX_COMPARISONS}"
+    );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// The budget for scenes whose lights the reference integrator finds easily.
-const EASY: Budget = Budget {
-    oracle: Oracle::Reference { spp: 2048 },
-    config_spp: 512,
-    unweighted_spp: 2048,
-    unweighted_mean_tolerance: None,
-    block: 2,
-    excluded: &[],
-};
+#[test]
+fn student_t_matches_tables() {
+    // Student's t table, two-sided: t(0.05, 10) = 2.228, t(0.01, 5) = 4.032,
+    // t(0.001, 30) = 3.646, t(0.05, 1) = 12.706; and the normal limit 1.960.
+    for (alpha, dof, t) in [
+        (0.05, 10.0, 2.228),
+        (0.01, 5.0, 4.032),
+        (0.001, 30.0, 3.646),
+        (0.05, 1.0, 12.706),
+        (0.05, f64::INFINITY, 1.960),
+    ] {
+        let threshold = student_t_threshold(alpha, dof);
+        assert!(
+            (threshold - t).abs() < 1e-3,
+            "t({alpha}, {dof}) = {threshold}, tables say {t}"
+        );
+    }
+}
 
 #[test]
 fn point_light_and_rough_metal() {
-    check_scene("pointlight.xml", EASY);
+    check_scene(
+        "pointlight",
+        Version::file("pointlight.xml"),
+        Budget::full(384, 160, 8),
+        None,
+    );
 }
 
+/// The glass and mirror Cornell box with its ceiling light enlarged from 0.46 × 0.38 to
+/// 1.8 × 1.8 (of the 2 × 2 ceiling): the reference integrator finds the original light with
+/// one uniform direction in about a hundred, which needs about 10⁸ samples for the image's
+/// standard error to reach 0.1%.
 #[test]
 fn glass_and_mirror_cornell_box() {
-    check_scene("cbox-glass.xml", EASY);
+    check_scene(
+        "cbox-glass",
+        LARGE_LIGHT_GLASS,
+        Budget::full(1024, 96, 2),
+        Some(Auto {
+            trials: Trials {
+                no_roulette: true,
+                no_light_tracing: true,
+                path_reuse: true,
+                ..Trials::default()
+            },
+            spp: 512,
+        }),
+    );
 }
+
+/// `cbox-glass.xml` with a large ceiling light.
+const LARGE_LIGHT_GLASS: Version = Version {
+    file: "cbox-glass.xml",
+    replace: &[LARGE_CEILING_LIGHT],
+    overrides: &[],
+    max_depth: Some(6),
+};
+
+/// The Cornell boxes' ceiling light (0.46 × 0.38) scaled to 1.8 × 1.8.
+const LARGE_CEILING_LIGHT: (&str, &str) = (
+    r#"<scale x="0.23" y="0.19" z="0.19"/>"#,
+    r#"<scale x="0.9" y="0.9" z="0.19"/>"#,
+);
 
 /// Mitsuba's `plastic` (a delta lobe and a diffuse one in one BSDF, which the reference and the
 /// uniform-direction configuration reach by choosing between the mirror and a uniform
 /// direction), from the Mitsuba crosscheck scenes.
 #[test]
 fn plastic() {
-    check_scene("../tests/crosscheck/plastic.xml", EASY);
+    check_scene(
+        "plastic",
+        Version::file("../tests/crosscheck/plastic.xml"),
+        Budget::full(2048, 48, 16),
+        None,
+    );
 }
 
 /// Mitsuba's `envmap` (an OpenEXR sky with a small bright sun, rotated and scaled, seen
 /// directly, through glass and in a mirror, with an area light besides), from the Mitsuba
-/// crosscheck scenes. The sun covers 0.4% of the hemisphere, so the reference's uniform
-/// directions find it rarely and it takes 16,384 samples per pixel.
+/// crosscheck scenes, at `max_depth` 3.
 #[test]
 fn environment_map() {
     check_scene(
-        "../tests/crosscheck/envmap.xml",
-        Budget {
-            oracle: Oracle::Reference { spp: 16384 },
-            ..EASY
+        "envmap",
+        Version {
+            max_depth: Some(3),
+            ..Version::file("../tests/crosscheck/envmap.xml")
         },
+        Budget::full(14336, 640, 4),
+        Some(Auto {
+            trials: Trials {
+                ris: true,
+                uniform_lights: true,
+                no_light_tracing: true,
+                path_reuse: true,
+                ..Trials::default()
+            },
+            spp: 640,
+        }),
     );
 }
 
@@ -223,14 +377,18 @@ fn environment_map() {
 /// blended with a diffuse or glossy one), from the Mitsuba crosscheck scenes.
 #[test]
 fn blend() {
-    check_scene_with(
-        "../tests/crosscheck/blend.xml",
-        &[
-            ("metal", "conductor"),
-            ("glass", "dielectric"),
-            ("coat", "plastic"),
-        ],
-        EASY,
+    check_scene(
+        "blend",
+        Version {
+            overrides: &[
+                ("metal", "conductor"),
+                ("glass", "dielectric"),
+                ("coat", "plastic"),
+            ],
+            ..Version::file("../tests/crosscheck/blend.xml")
+        },
+        Budget::full(1152, 96, 4),
+        None,
     );
 }
 
@@ -239,14 +397,24 @@ fn blend() {
 /// scenes.
 #[test]
 fn checkerboard() {
-    check_scene("../tests/crosscheck/checkerboard.xml", EASY);
+    check_scene(
+        "checkerboard",
+        Version::file("../tests/crosscheck/checkerboard.xml"),
+        Budget::full(1920, 128, 4),
+        None,
+    );
 }
 
 /// Mitsuba's `blendbsdf` with textured weights (an 8-bit PNG's luminance, a 16-bit grey PNG, a
 /// checkerboard), from the Mitsuba crosscheck scenes.
 #[test]
 fn blend_weight_textures() {
-    check_scene("../tests/crosscheck/blend-texture.xml", EASY);
+    check_scene(
+        "blend-texture",
+        Version::file("../tests/crosscheck/blend-texture.xml"),
+        Budget::full(1536, 128, 4),
+        None,
+    );
 }
 
 /// Mitsuba's `null` BSDF (an invisible card before the camera, an invisible sphere around a
@@ -254,22 +422,26 @@ fn blend_weight_textures() {
 /// scenes.
 #[test]
 fn null_bsdf() {
-    check_scene("../tests/crosscheck/null.xml", EASY);
+    check_scene(
+        "null",
+        Version::file("../tests/crosscheck/null.xml"),
+        Budget::full(5376, 320, 2),
+        None,
+    );
 }
 
 /// Opacity masks (a bitmap's, a checkerboard's, the default ½ and a constant, over diffuse,
-/// rough gold and a mirror), from the Mitsuba crosscheck scenes. The reference takes 8192 spp:
-/// the wall behind the masked mirror sees the light only along uniform directions that pass
-/// the mask, and at 2048 its blocks there were too noisy to judge against (16 of 1728 failed for
-/// light-only sampling, whose estimate, unlike the reference's, agreed with MIS and Mitsuba).
+/// rough gold and a mirror), from the Mitsuba crosscheck scenes, at `max_depth` 3.
 #[test]
 fn mask() {
     check_scene(
-        "../tests/crosscheck/mask.xml",
-        Budget {
-            oracle: Oracle::Reference { spp: 8192 },
-            ..EASY
+        "mask",
+        Version {
+            max_depth: Some(3),
+            ..Version::file("../tests/crosscheck/mask.xml")
         },
+        Budget::reduced(1024, 64, 4, 0.02, 0.25),
+        None,
     );
 }
 
@@ -278,19 +450,34 @@ fn mask() {
 /// plastic with an OpenEXR base blended by a PNG), from the Mitsuba crosscheck scenes.
 #[test]
 fn textured_blends() {
-    check_scene("../tests/crosscheck/textured-blend.xml", EASY);
+    check_scene(
+        "textured-blend",
+        Version::file("../tests/crosscheck/textured-blend.xml"),
+        Budget::reduced(1024, 64, 4, 0.01, 0.10),
+        None,
+    );
 }
 
 /// Mitsuba's `volpath` on surfaces, where passes through null lobes (an invisible card, a
-/// thin pane, a mask, a glowing null sphere) are not path vertices, at `max_depth` 3 with hidden
-/// emitters, from the Mitsuba crosscheck scenes.
+/// thin pane, a mask, a glowing null sphere) are not path vertices, at `max_depth` 3 with and
+/// without hidden emitters, from the Mitsuba crosscheck scenes.
+/// The volpath scene's budget: the reference integrator's image of it converges slowly (its
+/// standard error after 2048 × 16 samples per pixel is about 0.2% of the image, 0.8% of a
+/// block).
+const VOLPATH: Budget = Budget::reduced(1024, 64, 4, 0.03, 0.15);
+
 #[test]
 fn volpath_null_vertices() {
-    check_scene("../tests/crosscheck/volpath.xml", EASY);
-    check_scene_with(
-        "../tests/crosscheck/volpath.xml",
-        &[("hide", "false")],
-        EASY,
+    let file = Version::file("../tests/crosscheck/volpath.xml");
+    check_scene("volpath", file, VOLPATH, None);
+    check_scene(
+        "volpath (emitters shown)",
+        Version {
+            overrides: &[("hide", "false")],
+            ..file
+        },
+        VOLPATH,
+        None,
     );
 }
 
@@ -299,133 +486,327 @@ fn volpath_null_vertices() {
 /// quad, a twosided card and a plastic cube), from the Mitsuba crosscheck scenes.
 #[test]
 fn bitmap() {
-    check_scene("../tests/crosscheck/bitmap.xml", EASY);
+    check_scene(
+        "bitmap",
+        Version::file("../tests/crosscheck/bitmap.xml"),
+        Budget::full(1024, 96, 4),
+        None,
+    );
 }
 
 /// Mitsuba's `roughplastic` (a glossy coating over a diffuse base, seen directly and through
 /// the twosided wrapper), from the Mitsuba crosscheck scenes, every roughness at 0.3.
 #[test]
 fn rough_plastic() {
-    check_scene_with(
-        "../tests/crosscheck/rough-plastic.xml",
-        &[
-            ("floor_alpha", "0.3"),
-            ("ball_alpha", "0.3"),
-            ("card_alpha", "0.3"),
-        ],
-        EASY,
+    check_scene(
+        "rough-plastic",
+        Version {
+            overrides: &[
+                ("floor_alpha", "0.3"),
+                ("ball_alpha", "0.3"),
+                ("card_alpha", "0.3"),
+            ],
+            ..Version::file("../tests/crosscheck/rough-plastic.xml")
+        },
+        Budget::full(1024, 32, 8),
+        None,
     );
 }
 
 /// Mitsuba's `roughdielectric` (reflection and refraction by microfacets, seen through, lit
-/// through and lighting through), from the Mitsuba crosscheck scenes, every roughness at 0.5.
-/// Uniform directions are heavy-tailed through rough refraction (where the half vector
-/// degenerates, f grows as 1 / (wo·m + η wi·m)² while GGX's D stays finite): on a slab of
-/// rough water under a white sky the reference integrator's image mean was 1.026 where MIS and
-/// Mitsuba 3 gave 0.962, at 1,024 samples per pixel, so the oracle is MIS at a high count (which agrees
-/// with Mitsuba on this scene), the configurations without MIS are judged by their image mean,
-/// and the one with uniform directions is left out (its image mean was 7.6% high at 2,048
-/// samples per pixel, from a few huge samples).
+/// through and lighting through), from the Mitsuba crosscheck scenes, every roughness at 0.5,
+/// at `max_depth` 3: uniform directions are heavy-tailed through rough refraction (where the
+/// half vector degenerates, f grows as 1 / (wo·m + η wi·m)² while GGX's D stays finite), and
+/// chains of rough refractions make the reference's image converge too slowly to test.
 #[test]
 fn rough_glass() {
-    check_scene_with(
-        "../tests/crosscheck/rough-glass.xml",
-        &[
-            ("ball_alpha", "0.5"),
-            ("slab_alpha", "0.5"),
-            ("pane_alpha", "0.5"),
-        ],
-        Budget {
-            oracle: Oracle::HighSampleMis { spp: 32768 },
-            config_spp: 2048,
-            unweighted_spp: 2048,
-            unweighted_mean_tolerance: Some(0.02),
-            block: 2,
-            excluded: &["nee uniform directions"],
+    check_scene(
+        "rough-glass",
+        Version {
+            overrides: &[
+                ("ball_alpha", "0.5"),
+                ("slab_alpha", "0.5"),
+                ("pane_alpha", "0.5"),
+            ],
+            max_depth: Some(3),
+            ..Version::file("../tests/crosscheck/rough-glass.xml")
         },
+        Budget::reduced(1024, 64, 4, 0.03, 0.10),
+        None,
     );
 }
 
+/// The Cornell box with a large ceiling light (see [`glass_and_mirror_cornell_box`]), at
+/// `max_depth` 6 (roulette starts at 5), with hidden emitters so that the light's own pixels
+/// do not make most of the image's mean.
+///
+/// `cbox-smalllight.xml` is `cbox.xml` with a smaller, brighter light: its test version (the
+/// light enlarged) would be this scene's, so this test covers it.
 #[test]
-#[ignore = "full check (cargo xtask check)"]
 fn cornell_box() {
-    check_scene("cbox.xml", EASY);
+    check_scene(
+        "cbox",
+        LARGE_LIGHT_BOX,
+        Budget::full(8192, 384, 2),
+        Some(Auto {
+            trials: Trials {
+                no_roulette: true,
+                path_reuse: true,
+                ..Trials::default()
+            },
+            spp: 512,
+        }),
+    );
 }
 
+/// `cbox.xml` with a large ceiling light and hidden emitters.
+const LARGE_LIGHT_BOX: Version = Version {
+    file: "cbox.xml",
+    replace: &[LARGE_CEILING_LIGHT, HIDE_EMITTERS],
+    overrides: &[],
+    max_depth: Some(6),
+};
+
+/// The Cornell boxes' integrator with hidden emitters.
+const HIDE_EMITTERS: (&str, &str) = (
+    r#"<integer name="max_depth" value="$max_depth"/>"#,
+    r#"<integer name="max_depth" value="$max_depth"/><boolean name="hide_emitters" value="true"/>"#,
+);
+
+/// The Cornell box with an OBJ mesh and rough gold, with a large ceiling light and hidden
+/// emitters (see [`cornell_box`]).
 #[test]
-#[ignore = "full check (cargo xtask check)"]
 fn mesh_and_rough_gold_cornell_box() {
     check_scene(
-        "cbox-mesh.xml",
-        Budget {
-            oracle: Oracle::Reference { spp: 32768 },
-            ..EASY
+        "cbox-mesh",
+        Version {
+            file: "cbox-mesh.xml",
+            ..LARGE_LIGHT_BOX
         },
+        Budget::reduced(2048, 80, 4, 0.02, 0.05),
+        None,
     );
 }
 
 #[test]
-#[ignore = "full check (cargo xtask check)"]
 fn furnace() {
-    check_scene("furnace.xml", EASY);
-}
-
-#[test]
-#[ignore = "full check (cargo xtask check)"]
-fn thin_lens() {
-    check_scene("thinlens.xml", EASY);
-}
-
-#[test]
-#[ignore = "full check (cargo xtask check)"]
-fn soft_shadow() {
-    check_scene("softshadow.xml", EASY);
-}
-
-#[test]
-#[ignore = "full check (cargo xtask check)"]
-fn small_light_cornell_box() {
     check_scene(
-        "cbox-smalllight.xml",
-        Budget {
-            oracle: Oracle::Reference { spp: 32768 },
-            config_spp: 1024,
-            unweighted_spp: 32768,
-            unweighted_mean_tolerance: None,
-            block: 2,
-            excluded: &[],
-        },
+        "furnace",
+        Version::file("furnace.xml"),
+        Budget::full(128, 16, 1),
+        None,
     );
 }
 
 #[test]
-#[ignore = "full check (cargo xtask check)"]
+fn thin_lens() {
+    check_scene(
+        "thinlens",
+        Version::file("thinlens.xml"),
+        Budget::full(768, 80, 4),
+        None,
+    );
+}
+
+/// The soft shadows scene with its square light's edge 2.4 instead of 1.6.
+#[test]
+fn soft_shadow() {
+    check_scene(
+        "softshadow",
+        Version {
+            replace: &[(
+                r#"<scale value="0.8"/>
+            <rotate x="1" angle="90"/>"#,
+                r#"<scale value="1.2"/>
+            <rotate x="1" angle="90"/>"#,
+            )],
+            ..Version::file("softshadow.xml")
+        },
+        Budget::full(8192, 80, 32),
+        None,
+    );
+}
+
+/// Veach's scene with sphere lights of radius 0.9 to 1.2 (equal power) instead of 0.03 to
+/// 0.9, plates of roughness 0.4 to 0.1 instead of 0.25 to 0.005, and hidden emitters.
+#[test]
 fn veach_mis() {
     check_scene(
-        "veach-mis.xml",
-        Budget {
-            oracle: Oracle::HighSampleMis { spp: 262144 },
-            config_spp: 8192,
-            unweighted_spp: 32768,
-            unweighted_mean_tolerance: Some(0.01),
-            block: 2,
-            excluded: &[],
+        "veach-mis",
+        Version {
+            replace: &[
+                // The largest first, so that the smallest, which takes its place, is not edited
+                // again.
+                (
+                    r#"<float name="radius" value="0.9"/>"#,
+                    r#"<float name="radius" value="1.2"/>"#,
+                ),
+                (r#"value="0.03"/>"#, r#"value="0.9"/>"#),
+                (r#"value="888.8889""#, r#"value="1""#),
+                (
+                    r#"<float name="radius" value="0.1"/>"#,
+                    r#"<float name="radius" value="1.0"/>"#,
+                ),
+                (r#"value="80.0000""#, r#"value="0.81""#),
+                (
+                    r#"<float name="radius" value="0.3"/>"#,
+                    r#"<float name="radius" value="1.1"/>"#,
+                ),
+                (r#"value="8.8889""#, r#"value="0.67""#),
+                (r#"value="0.9877""#, r#"value="0.5625""#),
+                (r#""alpha" value="0.25""#, r#""alpha" value="0.4""#),
+                (r#""alpha" value="0.08""#, r#""alpha" value="0.3""#),
+                (r#""alpha" value="0.02""#, r#""alpha" value="0.2""#),
+                (r#""alpha" value="0.005""#, r#""alpha" value="0.1""#),
+                (
+                    r#"<integer name="max_depth" value="3"/>"#,
+                    r#"<integer name="max_depth" value="3"/><boolean name="hide_emitters" value="true"/>"#,
+                ),
+            ],
+            ..Version::file("veach-mis.xml")
         },
+        Budget::reduced(3072, 80, 4, 0.05, 0.20),
+        None,
     );
 }
 
+/// The many-lights scene with sphere lights of radius 0.6 instead of 0.04, and hidden emitters.
 #[test]
-#[ignore = "full check (cargo xtask check)"]
 fn many_lights() {
     check_scene(
-        "manylights.xml",
-        Budget {
-            oracle: Oracle::Reference { spp: 32768 },
-            config_spp: 1024,
-            unweighted_spp: 32768,
-            unweighted_mean_tolerance: Some(0.01),
-            block: 2,
-            excluded: &[],
+        "manylights",
+        Version {
+            replace: &[
+                (
+                    r#"<float name="radius" value="0.04"/>"#,
+                    r#"<float name="radius" value="0.6"/>"#,
+                ),
+                (
+                    r#"<integer name="max_depth" value="3"/>"#,
+                    r#"<integer name="max_depth" value="3"/><boolean name="hide_emitters" value="true"/>"#,
+                ),
+            ],
+            ..Version::file("manylights.xml")
+        },
+        Budget::reduced(1024, 64, 4, 0.03, 0.10),
+        None,
+    );
+}
+
+/// One of `auto`'s trials in [`check_auto`]: whether the plan makes it, its label, and the
+/// settings it switches.
+type Switch<'a> = (bool, &'static str, &'a dyn Fn(PathSettings) -> PathSettings);
+
+/// `auto` on `scene`: every candidate its technique pilot can choose (the base, the base with
+/// each trial the plan makes switched, and every trial switched at once, path reuse then turning
+/// light tracing off), each rendered as the image would be (with the plan's sampler), and `auto`
+/// end to end (`plan_from_flags` with only `--spp` and `--seed`, which runs the pilot and
+/// samples adaptively), against `oracle`. The plan's trials must be `auto.trials`, so that the
+/// scenes keep covering every choice. Returns the failures and the number of comparisons.
+fn check_auto(
+    name: &str,
+    scene: &RenderScene,
+    oracle: &Replicates,
+    budget: Budget,
+    auto: Auto,
+) -> (Vec<String>, usize) {
+    let plan = |spp: u32, seed: Option<u32>| {
+        let spp = spp.to_string();
+        let seed = seed.map(|s| s.to_string());
+        let mut flags = vec!["--spp", spp.as_str()];
+        if let Some(seed) = &seed {
+            flags.extend(["--seed", seed.as_str()]);
+        }
+        plan_from_flags(scene, &flags).expect("a plan")
+    };
+    let candidate_plan = plan(budget.config, None);
+    let trials = auto.trials;
+    assert_eq!(
+        candidate_plan.trials, trials,
+        "{name}: the trials auto makes"
+    );
+    let Transport::Path(base) = candidate_plan.transport else {
+        panic!("{name}: auto renders with the path tracer");
+    };
+    let ris = |s: PathSettings| PathSettings {
+        light_selection: LightSelectionMode::Ris {
+            candidates: RIS_CANDIDATES,
+        },
+        ..s
+    };
+    let uniform_lights = |s: PathSettings| PathSettings {
+        light_selection: LightSelectionMode::Uniform,
+        ..s
+    };
+    let no_roulette = |s: PathSettings| PathSettings {
+        russian_roulette: None,
+        ..s
+    };
+    let no_light_tracing = |s: PathSettings| PathSettings {
+        light_tracing: false,
+        ..s
+    };
+    let path_reuse = |s: PathSettings| PathSettings {
+        path_reuse: Some(PathReuse { block: REUSE_BLOCK }),
+        light_tracing: false,
+        ..s
+    };
+    // The two light selections exclude each other (the pilot keeps the better), so "every
+    // trial" takes RIS, which comes first, and uniform selection is tried on its own.
+    let switches: [Switch; 5] = [
+        (trials.ris, "+ris", &ris),
+        (trials.uniform_lights, "+uniform-lights", &uniform_lights),
+        (trials.no_roulette, "-roulette", &no_roulette),
+        (trials.no_light_tracing, "-light-tracing", &no_light_tracing),
+        (trials.path_reuse, "+path-reuse", &path_reuse),
+    ];
+    let mut candidates = vec![("auto base".to_string(), base)];
+    let mut every = base;
+    for (on, label, switch) in switches {
+        if on {
+            candidates.push((format!("auto base {label}"), switch(base)));
+            if !(label == "+uniform-lights" && trials.ris) {
+                every = switch(every);
+            }
+        }
+    }
+    candidates.push(("auto base, every trial".to_string(), every));
+    let mut failures = Vec::new();
+    for (label, settings) in &candidates {
+        let spp = budget.config;
+        let replicates = Replicates::render(scene, label, seeds(CONFIG_SEED), spp, |seed| {
+            RenderPlan::fixed_spp(
+                Transport::Path(*settings),
+                candidate_plan.sampler,
+                seed,
+                spp,
+            )
+        });
+        if let Err(failure) = check_unbiased(name, &replicates, oracle, ALPHA, budget.power) {
+            failures.push(failure);
+        }
+    }
+    let auto_spp = auto.spp;
+    let mut choices = Vec::new();
+    let end_to_end = Replicates::render_with(
+        scene,
+        "auto",
+        CONFIG_SEED..CONFIG_SEED + AUTO_REPLICATES,
+        auto_spp,
+        |seed| plan(auto_spp, Some(seed)),
+        |output| {
+            let pilot = output.auto.as_ref().expect("auto runs its technique pilot");
+            assert_eq!(
+                pilot.choice.skipped, None,
+                "{name}: auto's pilot must run at {auto_spp} spp"
+            );
+            assert!(output.pilot_spp > 0, "{name}: auto samples adaptively");
+            choices.push(pilot.choice.label.clone());
         },
     );
+    println!("figure: {name} / auto chose {choices:?}");
+    if let Err(failure) = check_unbiased(name, &end_to_end, oracle, ALPHA, budget.power) {
+        failures.push(failure);
+    }
+    (failures, candidates.len() + 1)
 }

@@ -3,6 +3,8 @@
 
 #![allow(dead_code)] // Each test file uses part of this module.
 
+pub mod compare;
+
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
 use integrators::{LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette};
@@ -39,6 +41,52 @@ pub fn load_file(path: &Path, overrides: &[(&str, &str)], width: u32, height: u3
         .collect();
     let mut desc = scene::parse_file(path, &overrides).unwrap_or_else(|e| panic!("{e}"));
     desc.film = desc.film.resized(width, height);
+    scene::build(desc).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A test version of a scene file: the file with `replacements` of its text (each `(from, to)`
+/// must occur in it; every occurrence is replaced), `overrides` of its `<default>` values, the
+/// film set to `size × size` and, when given, the integrator's `max_depth` set to `max_depth`.
+/// The edited text is loaded from a temporary file beside the original (so that its relative
+/// paths still resolve), removed once loaded.
+pub fn load_version(
+    path: &Path,
+    replacements: &[(&str, &str)],
+    overrides: &[(&str, &str)],
+    size: u32,
+    max_depth: Option<i32>,
+) -> RenderScene {
+    let overrides: Vec<(String, String)> = overrides
+        .iter()
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect();
+    let mut desc = if replacements.is_empty() {
+        scene::parse_file(path, &overrides)
+    } else {
+        let mut text =
+            std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        for (from, to) in replacements {
+            assert!(
+                text.contains(from),
+                "{}: `{from}` is not in the file (its test version is out of date)",
+                path.display()
+            );
+            text = text.replace(from, to);
+        }
+        let dir = path.parent().expect("a scene file has a folder");
+        let mut file = tempfile::Builder::new()
+            .prefix(".test-version-")
+            .suffix(".xml")
+            .tempfile_in(dir)
+            .expect("temporary scene file");
+        std::io::Write::write_all(&mut file, text.as_bytes()).expect("temporary scene file");
+        scene::parse_file(file.path(), &overrides)
+    }
+    .unwrap_or_else(|e| panic!("{e}"));
+    desc.film = desc.film.resized(size, size);
+    if let Some(depth) = max_depth {
+        desc.integrator.max_depth = depth;
+    }
     scene::build(desc).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -160,13 +208,39 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
 /// power-proportional selection, independent sampler): BSDF-only, light-only, uniform directions,
 /// balance heuristic, uniform and RIS selection, roulette, stratified, blue-noise and Sobol samplers.
 pub fn configurations(base: PathSettings) -> Vec<Configuration> {
-    let independent = |label, settings| Configuration {
+    configurations_with(base, SamplerKind::Independent)
+}
+
+/// [`configurations`] with `sampler` as the base's sampler: every switch is rendered with it,
+/// and each of the other samplers is a configuration of its own (labelled by its name).
+pub fn configurations_with(base: PathSettings, sampler: SamplerKind) -> Vec<Configuration> {
+    let mut list = switches(base, sampler);
+    for (kind, label) in [
+        (SamplerKind::Independent, "independent"),
+        (SamplerKind::Stratified, "stratified"),
+        (SamplerKind::BlueNoise, "blue noise"),
+        (SamplerKind::Sobol, "sobol"),
+    ] {
+        if kind != sampler {
+            list.push(Configuration {
+                label,
+                settings: base,
+                sampler: kind,
+            });
+        }
+    }
+    list
+}
+
+/// The switches of [`configurations_with`], each with `sampler`.
+fn switches(base: PathSettings, sampler: SamplerKind) -> Vec<Configuration> {
+    let switch = |label, settings| Configuration {
         label,
         settings,
-        sampler: SamplerKind::Independent,
+        sampler,
     };
     vec![
-        independent(
+        switch(
             "bsdf-only",
             PathSettings {
                 sample_lights: false,
@@ -174,14 +248,14 @@ pub fn configurations(base: PathSettings) -> Vec<Configuration> {
                 ..base
             },
         ),
-        independent(
+        switch(
             "light-only (nee, no mis)",
             PathSettings {
                 mis: Mis::Off,
                 ..base
             },
         ),
-        independent(
+        switch(
             "nee uniform directions",
             PathSettings {
                 sample_bsdf: false,
@@ -189,58 +263,43 @@ pub fn configurations(base: PathSettings) -> Vec<Configuration> {
                 ..base
             },
         ),
-        independent(
+        switch(
             "mis balance",
             PathSettings {
                 mis: Mis::Balance,
                 ..base
             },
         ),
-        independent("mis power", base),
-        independent(
+        switch("mis power", base),
+        switch(
             "mis power uniform selection",
             PathSettings {
                 light_selection: LightSelectionMode::Uniform,
                 ..base
             },
         ),
-        independent(
+        switch(
             "ris 8",
             PathSettings {
                 light_selection: LightSelectionMode::Ris { candidates: 8 },
                 ..base
             },
         ),
-        independent(
+        switch(
             "roulette from 2",
             PathSettings {
                 russian_roulette: Some(RussianRoulette { start_depth: 2 }),
                 ..base
             },
         ),
-        Configuration {
-            label: "stratified",
-            settings: base,
-            sampler: SamplerKind::Stratified,
-        },
-        Configuration {
-            label: "blue noise",
-            settings: base,
-            sampler: SamplerKind::BlueNoise,
-        },
-        independent(
+        switch(
             "light tracing",
             PathSettings {
                 light_tracing: true,
                 ..base
             },
         ),
-        Configuration {
-            label: "sobol",
-            settings: base,
-            sampler: SamplerKind::Sobol,
-        },
-        independent(
+        switch(
             "path reuse 4x4",
             PathSettings {
                 path_reuse: Some(PathReuse { block: 4 }),
