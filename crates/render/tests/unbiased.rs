@@ -49,7 +49,7 @@
 
 mod common;
 
-use common::compare::{POWER, Power, Replicates, check_unbiased, compare, student_t_threshold};
+use common::compare::{POWER, Power, Replicates, check_unbiased, compare};
 use common::{Configuration, configurations_with, load_version, mis_power, scenes_dir};
 use integrators::{LightSelectionMode, LightTracer, Mis, PathReuse, PathSettings};
 use render::auto::{REUSE_BLOCK, RIS_CANDIDATES, Trials};
@@ -268,25 +268,6 @@ fn check_scene(name: &str, version: Version, budget: Budget, auto: Option<Auto>)
         "{name}: {comparisons} comparisons, but ALPHA is shared by {MAX_COMPARISONS}"
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-}
-
-#[test]
-fn student_t_matches_tables() {
-    // Student's t table, two-sided: t(0.05, 10) = 2.228, t(0.01, 5) = 4.032,
-    // t(0.001, 30) = 3.646, t(0.05, 1) = 12.706; and the normal limit 1.960.
-    for (alpha, dof, t) in [
-        (0.05, 10.0, 2.228),
-        (0.01, 5.0, 4.032),
-        (0.001, 30.0, 3.646),
-        (0.05, 1.0, 12.706),
-        (0.05, f64::INFINITY, 1.960),
-    ] {
-        let threshold = student_t_threshold(alpha, dof);
-        assert!(
-            (threshold - t).abs() < 1e-3,
-            "t({alpha}, {dof}) = {threshold}, tables say {t}"
-        );
-    }
 }
 
 #[test]

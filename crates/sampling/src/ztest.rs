@@ -2,7 +2,7 @@
 //! approximately normal (block or pixel means against a reference); and Student's t for a mean
 //! whose variance is estimated from a few independent repetitions (renders with other seeds).
 
-use crate::chi2::gamma_q;
+use crate::chi2::{gamma_q, incomplete_beta};
 
 /// The per-test level that keeps the family-wise level at `family_alpha` over `tests`
 /// independent tests (Šidák): 1 − (1 − α)^(1/n).
@@ -71,9 +71,83 @@ pub fn student_t_two_sided_p_value(t: f64, dof: u32) -> f64 {
     (1.0 - inside).clamp(0.0, 1.0)
 }
 
+/// P(|T| ≥ |t|) for Student's t with a real number `dof` ≥ 1 of degrees of freedom, as Welch's
+/// test of two means with unequal variances gets them (Welch–Satterthwaite); the normal
+/// distribution when `dof` is infinite. The regularised incomplete beta function
+/// I_{ν/(ν+t²)}(ν/2, ½); at whole `dof` it equals [`student_t_two_sided_p_value`]. NaN gives 0 (a
+/// rejection).
+pub fn welch_two_sided_p_value(t: f64, dof: f64) -> f64 {
+    assert!(
+        dof >= 1.0,
+        "Student's t needs at least one degree of freedom, not {dof}"
+    );
+    if t.is_nan() {
+        return 0.0;
+    }
+    if dof.is_infinite() {
+        return two_sided_p_value(t);
+    }
+    incomplete_beta(0.5 * dof, 0.5, dof / (dof + t * t))
+}
+
+/// The |t| above which a two-sided test with `dof` ≥ 1 degrees of freedom (real, or infinite for
+/// the normal) rejects at level `alpha`, for [`welch_two_sided_p_value`].
+pub fn welch_threshold(alpha: f64, dof: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0_f64, 1e3_f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if welch_two_sided_p_value(mid, dof) > alpha {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    hi
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn welch_matches_the_exact_series_and_tables() {
+        // At whole degrees of freedom the incomplete beta agrees with the exact series.
+        for dof in [1_u32, 2, 3, 7, 15, 31, 100] {
+            for t in [0.0, 0.5, 1.7, 3.0, 6.0, 40.0] {
+                let (beta, series) = (
+                    welch_two_sided_p_value(t, f64::from(dof)),
+                    student_t_two_sided_p_value(t, dof),
+                );
+                assert!(
+                    (beta - series).abs() < 1e-12 * series.max(1e-300) + 1e-15,
+                    "dof {dof}, t {t}: {beta} against {series}"
+                );
+            }
+        }
+        // Between whole degrees of freedom the p-value lies between its neighbours'.
+        let (p15, p155, p16) = (
+            welch_two_sided_p_value(3.0, 15.0),
+            welch_two_sided_p_value(3.0, 15.5),
+            welch_two_sided_p_value(3.0, 16.0),
+        );
+        assert!(p16 < p155 && p155 < p15, "{p16} < {p155} < {p15}");
+        // Student's t table, two-sided: t(0.05, 10) = 2.228, t(0.01, 5) = 4.032,
+        // t(0.001, 30) = 3.646, t(0.05, 1) = 12.706; and the normal limit 1.960.
+        for (alpha, dof, t) in [
+            (0.05, 10.0, 2.228),
+            (0.01, 5.0, 4.032),
+            (0.001, 30.0, 3.646),
+            (0.05, 1.0, 12.706),
+            (0.05, f64::INFINITY, 1.960),
+        ] {
+            let threshold = welch_threshold(alpha, dof);
+            assert!(
+                (threshold - t).abs() < 1e-3,
+                "t({alpha}, {dof}) = {threshold}, tables say {t}"
+            );
+        }
+        assert_eq!(welch_two_sided_p_value(f64::NAN, 4.5), 0.0);
+    }
 
     #[test]
     fn student_t_matches_closed_forms_and_tables() {

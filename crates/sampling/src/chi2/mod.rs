@@ -29,7 +29,7 @@
 
 mod gamma;
 
-pub(crate) use gamma::gamma_q;
+pub(crate) use gamma::{gamma_q, incomplete_beta};
 mod outcome;
 mod quadrature;
 
