@@ -95,14 +95,7 @@ impl RenderBudget {
     ///   time is spent. At least one pass is always rendered (unless the sample limit is 0).
     ///
     /// How the samples are split into passes never changes the image (see [`crate::driver`]).
-    pub fn next_pass_spp(&self, spp_done: u32, elapsed: f64, last_pass: u32) -> u32 {
-        self.next_pass_spp_within(spp_done, elapsed, last_pass, MAX_PASS_SECONDS)
-    }
-
-    /// [`next_pass_spp`](Self::next_pass_spp) with passes planned to last at most
-    /// `max_pass_seconds` instead of [`MAX_PASS_SECONDS`] (a render that must stop sooner when
-    /// asked: the Python package's).
-    pub fn next_pass_spp_within(
+    pub fn next_pass_spp(
         &self,
         spp_done: u32,
         elapsed: f64,
@@ -156,51 +149,70 @@ mod tests {
     #[test]
     fn spp_only_grows_short_passes_up_to_the_limit() {
         let budget = RenderBudget::spp(64);
-        assert_eq!(budget.next_pass_spp(0, 0.0, 0), 1, "first pass measures");
-        assert_eq!(budget.next_pass_spp(1, 0.001, 1), 2, "at most doubling");
         assert_eq!(
-            budget.next_pass_spp(7, 0.7, 4),
+            budget.next_pass_spp(0, 0.0, 0, MAX_PASS_SECONDS),
+            1,
+            "first pass measures"
+        );
+        assert_eq!(
+            budget.next_pass_spp(1, 0.001, 1, MAX_PASS_SECONDS),
+            2,
+            "at most doubling"
+        );
+        assert_eq!(
+            budget.next_pass_spp(7, 0.7, 4, MAX_PASS_SECONDS),
             8,
             "0.1 s per spp: a pass of at most 1 s holds 10, doubling caps at 8"
         );
         assert_eq!(
-            budget.next_pass_spp(30, 3.0, 16),
+            budget.next_pass_spp(30, 3.0, 16, MAX_PASS_SECONDS),
             10,
             "a pass lasts at most MAX_PASS_SECONDS"
         );
         assert_eq!(
-            budget.next_pass_spp(60, 0.06, 32),
+            budget.next_pass_spp(60, 0.06, 32, MAX_PASS_SECONDS),
             4,
             "never past the limit"
         );
-        assert_eq!(budget.next_pass_spp(64, 3.0, 4), 0);
-        assert_eq!(RenderBudget::spp(0).next_pass_spp(0, 0.0, 0), 0);
+        assert_eq!(budget.next_pass_spp(64, 3.0, 4, MAX_PASS_SECONDS), 0);
+        assert_eq!(
+            RenderBudget::spp(0).next_pass_spp(0, 0.0, 0, MAX_PASS_SECONDS),
+            0
+        );
     }
 
     #[test]
     fn time_budget_measures_then_fills_the_remaining_time() {
         let budget = RenderBudget::seconds(10.0);
         assert_eq!(
-            budget.next_pass_spp(0, 0.0, 0),
+            budget.next_pass_spp(0, 0.0, 0, MAX_PASS_SECONDS),
             1,
             "first pass measures the speed"
         );
         // 1 spp took 0.1 s: 99 more would fit, but the pass at most doubles.
-        assert_eq!(budget.next_pass_spp(1, 0.1, 1), 2);
+        assert_eq!(budget.next_pass_spp(1, 0.1, 1, MAX_PASS_SECONDS), 2);
         assert_eq!(
-            budget.next_pass_spp(64, 9.5, 32),
+            budget.next_pass_spp(64, 9.5, 32, MAX_PASS_SECONDS),
             3,
             "0.5 s left at 0.148 s per spp"
         );
         assert_eq!(
-            budget.next_pass_spp(64, 8.0, 32),
+            budget.next_pass_spp(64, 8.0, 32, MAX_PASS_SECONDS),
             8,
             "2 s left at 0.125 s per spp, but a pass lasts at most 1 s"
         );
-        assert_eq!(budget.next_pass_spp(99, 9.95, 35), 1, "never less than one");
-        assert_eq!(budget.next_pass_spp(100, 10.0, 1), 0, "time spent");
         assert_eq!(
-            budget.next_pass_spp(7, 0.0, 7),
+            budget.next_pass_spp(99, 9.95, 35, MAX_PASS_SECONDS),
+            1,
+            "never less than one"
+        );
+        assert_eq!(
+            budget.next_pass_spp(100, 10.0, 1, MAX_PASS_SECONDS),
+            0,
+            "time spent"
+        );
+        assert_eq!(
+            budget.next_pass_spp(7, 0.0, 7, MAX_PASS_SECONDS),
             14,
             "an unmeasurably fast pass still only doubles"
         );
@@ -213,22 +225,22 @@ mod tests {
             max_seconds: Some(100.0),
         };
         assert_eq!(
-            budget.next_pass_spp(8, 0.8, 4),
+            budget.next_pass_spp(8, 0.8, 4, MAX_PASS_SECONDS),
             2,
             "the sample limit caps the pass"
         );
-        assert_eq!(budget.next_pass_spp(10, 1.0, 2), 0);
+        assert_eq!(budget.next_pass_spp(10, 1.0, 2, MAX_PASS_SECONDS), 0);
         let budget = RenderBudget {
             max_spp: Some(1000),
             max_seconds: Some(1.0),
         };
-        assert_eq!(budget.next_pass_spp(5, 1.2, 2), 0);
+        assert_eq!(budget.next_pass_spp(5, 1.2, 2, MAX_PASS_SECONDS), 0);
         assert_eq!(
             RenderBudget {
                 max_spp: Some(0),
                 max_seconds: Some(1.0)
             }
-            .next_pass_spp(0, 0.0, 0),
+            .next_pass_spp(0, 0.0, 0, MAX_PASS_SECONDS),
             0
         );
     }
@@ -237,23 +249,19 @@ mod tests {
     fn a_shorter_pass_limit_plans_shorter_passes() {
         let budget = RenderBudget::spp(1000);
         // 0.1 s per spp: 10 fit in the default second, 2 in a quarter of one.
-        assert_eq!(budget.next_pass_spp(30, 3.0, 16), 10);
-        assert_eq!(budget.next_pass_spp_within(30, 3.0, 16, 0.25), 2);
+        assert_eq!(budget.next_pass_spp(30, 3.0, 16, MAX_PASS_SECONDS), 10);
+        assert_eq!(budget.next_pass_spp(30, 3.0, 16, 0.25), 2);
         assert_eq!(
-            budget.next_pass_spp_within(30, 3.0, 16, 0.01),
+            budget.next_pass_spp(30, 3.0, 16, 0.01),
             1,
             "never less than one"
-        );
-        assert_eq!(
-            budget.next_pass_spp_within(30, 3.0, 16, MAX_PASS_SECONDS),
-            budget.next_pass_spp(30, 3.0, 16)
         );
     }
 
     #[test]
     fn zero_seconds_still_renders_one_pass() {
         let budget = RenderBudget::seconds(0.0);
-        assert_eq!(budget.next_pass_spp(0, 0.0, 0), 1);
-        assert_eq!(budget.next_pass_spp(1, 0.01, 1), 0);
+        assert_eq!(budget.next_pass_spp(0, 0.0, 0, MAX_PASS_SECONDS), 1);
+        assert_eq!(budget.next_pass_spp(1, 0.01, 1, MAX_PASS_SECONDS), 0);
     }
 }

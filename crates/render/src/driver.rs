@@ -277,7 +277,7 @@ where
     let (mut spp, mut last_pass) = (resumed_spp, 0u32);
     let mut interrupted = false;
     loop {
-        let pass_spp = run_budget.next_pass_spp_within(
+        let pass_spp = run_budget.next_pass_spp(
             spp - resumed_spp,
             start.elapsed().as_secs_f64(),
             last_pass,

@@ -312,9 +312,12 @@ fn render_adaptive<T: RayTally + Default + Send>(
         ..*plan
     };
     let image_options = RenderOptions {
-        allocation: Some(Arc::new(match reuse_block(plan) {
-            Some(block) => Allocation::from_pilot(&pilot.film, &costs).blockwise(block),
-            None => Allocation::from_pilot(&pilot.film, &costs),
+        allocation: Some(Arc::new({
+            let allocation = Allocation::from_pilot(&pilot.film, &costs);
+            match reuse_block(plan) {
+                Some(block) => allocation.blockwise(block),
+                None => allocation,
+            }
         })),
         ..options.clone()
     };
