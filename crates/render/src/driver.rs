@@ -23,6 +23,7 @@ pub use crate::budget::{BudgetError, RenderBudget};
 use crate::film::{Film, PixelSum};
 use crate::progress::Progress;
 pub use crate::stop::StopSignal;
+use crate::technique::{RenderPlan, Transport};
 use crate::tiles::{Tile, tile_size_for, tiles};
 
 /// How to drive a render, apart from its budget.
@@ -141,6 +142,20 @@ pub struct RenderOutput {
     pub auto: Option<TechniquePilot>,
     /// Why adaptive sampling was asked for and not done (a budget too small to split), if so.
     pub adaptive_skipped: Option<String>,
+}
+
+impl RenderOutput {
+    /// The plan that rendered this output's film: `plan` with the techniques `auto`'s pilot
+    /// chose, where it ran.
+    pub fn rendered_plan(&self, plan: &RenderPlan) -> RenderPlan {
+        match &self.auto {
+            Some(pilot) => RenderPlan {
+                transport: Transport::Path(pilot.choice.settings),
+                ..*plan
+            },
+            None => *plan,
+        }
+    }
 }
 
 /// Renders a `width × height` image until `budget` is spent, on the current rayon thread pool

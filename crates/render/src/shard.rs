@@ -15,7 +15,7 @@ use crate::commands::CommandError;
 use crate::driver::{NonFiniteCounts, RenderBudget, RenderOutput, ResumePoint};
 use crate::film::Film;
 use crate::film_exr::{RenderRecord, SampleRanges, render_settings};
-use crate::technique::{RenderPlan, Transport};
+use crate::technique::RenderPlan;
 use scene::SceneDesc;
 use scene::limits::MAX_SAMPLE_COUNT;
 
@@ -83,16 +83,9 @@ pub fn film_record(
     first: u32,
     output: &RenderOutput,
 ) -> RenderRecord {
-    let rendered = match &output.auto {
-        Some(pilot) => RenderPlan {
-            transport: Transport::Path(pilot.choice.settings),
-            ..*plan
-        },
-        None => *plan,
-    };
     RenderRecord {
         scene: scene_hash,
-        settings: render_settings(&rendered, desc),
+        settings: render_settings(&output.rendered_plan(plan), desc),
         samples: SampleRanges::single(plan.seed, first..output.spp - output.pilot_spp),
     }
 }

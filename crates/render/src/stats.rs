@@ -96,10 +96,7 @@ impl RenderStats {
         let mut stats = Self::from_output(output);
         stats.rays = counters.rays;
         stats.shadow_rays = counters.shadow_rays;
-        stats.techniques = match &output.auto {
-            Some(pilot) => pilot.choice.settings.technique_names(),
-            None => plan.transport.technique_names(),
-        };
+        stats.techniques = output.rendered_plan(plan).transport.technique_names();
         if has_lens {
             stats.techniques.push("thin-lens".to_string());
         }
