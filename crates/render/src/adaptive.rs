@@ -116,11 +116,21 @@ pub fn split_budget(budget: &RenderBudget) -> Option<(RenderBudget, RenderBudget
 
 /// Per-pixel shares of the samples: pixel `i` gets `max(1, round(share_i · v))` samples when
 /// the mean is `v` samples per pixel. The shares average 1.
+///
+/// In whole rounds ([`Allocation::in_rounds`]) pixel `i` instead gets `k_i · t` samples, where
+/// `k_i` is its share in quarters (at least 1) and `t` the rounds done; every pixel's count is
+/// then `t` times a number known before the render, which splatting camera samples needs to
+/// stay unbiased under a time budget ([`crate::filter::Splatter`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Allocation {
     width: u32,
     shares: Vec<f32>,
+    /// Per pixel, samples per round (`k_i`); empty unless in whole rounds.
+    per_round: Vec<u32>,
 }
+
+/// Samples per round of a pixel whose share is 1, in an allocation in whole rounds.
+pub const SAMPLES_PER_ROUND: u32 = 4;
 
 impl Allocation {
     /// The allocation that minimises relative MSE for the time spent according to the `pilot`
@@ -151,7 +161,37 @@ impl Allocation {
         Self {
             width: pilot.width(),
             shares: normalised_shares(&wanted),
+            per_round: Vec::new(),
         }
+    }
+
+    /// The same allocation in whole rounds: pixel `i` takes `k_i = max(1, round(share_i ·
+    /// SAMPLES_PER_ROUND))` samples per round, and at a mean of `v` samples per pixel the rounds
+    /// done are `round(v / k̄)` with `k̄` the mean of the `k_i` (so the mean count stays within
+    /// `k̄ / 2` of `v`). Pixels with equal shares (a block's, [`Self::blockwise`]) keep equal
+    /// counts.
+    pub fn in_rounds(mut self) -> Self {
+        self.per_round = self
+            .shares
+            .iter()
+            .map(|&s| ((f64::from(s) * f64::from(SAMPLES_PER_ROUND)).round() as u32).max(1))
+            .collect();
+        self
+    }
+
+    /// Samples per round of `pixel` when the allocation is in whole rounds
+    /// ([`Self::in_rounds`]), else `None`.
+    pub fn per_round(&self, pixel: UVec2) -> Option<u32> {
+        self.per_round.get(self.index(pixel)).copied()
+    }
+
+    /// Rounds done at a mean of `mean_spp` samples per pixel, for an allocation in rounds.
+    fn rounds(&self, mean_spp: u32) -> u32 {
+        let total: u64 = self.per_round.iter().map(|&k| u64::from(k)).sum();
+        let mean = total as f64 / self.per_round.len().max(1) as f64;
+        (f64::from(mean_spp) / mean)
+            .round()
+            .min(f64::from(u32::MAX)) as u32
     }
 
     /// The same allocation with every `block × block` block of pixels (aligned to the image, cut
@@ -191,9 +231,13 @@ impl Allocation {
 
     /// Samples `pixel` gets when the mean is `mean_spp` samples per pixel: 0 for 0, else at least
     /// 1; never decreasing as `mean_spp` grows, so passes can add samples pixel by pixel.
+    /// In whole rounds: `k_i` times the rounds done, which may be 0 for small `mean_spp`.
     pub fn samples(&self, pixel: UVec2, mean_spp: u32) -> u32 {
         if mean_spp == 0 {
             return 0;
+        }
+        if let Some(per_round) = self.per_round(pixel) {
+            return per_round.saturating_mul(self.rounds(mean_spp));
         }
         let wanted = (f64::from(self.share(pixel)) * f64::from(mean_spp)).round();
         wanted.clamp(1.0, f64::from(u32::MAX)) as u32
@@ -253,7 +297,43 @@ mod tests {
         Allocation {
             width,
             shares: vec![1.0; width as usize * height as usize],
+            per_round: Vec::new(),
         }
+    }
+
+    #[test]
+    fn allocations_in_rounds_give_every_pixel_a_multiple_of_its_share() {
+        let allocation = Allocation {
+            width: 4,
+            shares: vec![0.25, 0.5, 1.0, 2.25],
+            per_round: Vec::new(),
+        }
+        .in_rounds();
+        let pixels: Vec<UVec2> = (0..4).map(|x| UVec2::new(x, 0)).collect();
+        let per_round: Vec<u32> = pixels
+            .iter()
+            .map(|&p| allocation.per_round(p).unwrap())
+            .collect();
+        assert_eq!(per_round, [1, 2, 4, 9]);
+        let mut last = vec![0; 4];
+        for mean in [0, 1, 3, 4, 9, 100, 1000] {
+            let counts: Vec<u32> = pixels
+                .iter()
+                .map(|&p| allocation.samples(p, mean))
+                .collect();
+            let rounds = counts[0];
+            for (count, k) in counts.iter().zip(&per_round) {
+                assert_eq!(*count, k * rounds, "mean {mean}");
+            }
+            let taken = counts.iter().sum::<u32>() as f64 / 4.0;
+            assert!(
+                (taken - f64::from(mean)).abs() <= 2.0,
+                "mean {mean}: {taken}"
+            );
+            assert!(counts.iter().zip(&last).all(|(c, l)| c >= l), "never fewer");
+            last = counts;
+        }
+        assert_eq!(uniform(2, 2).per_round(UVec2::ZERO), None);
     }
 
     #[test]
@@ -292,6 +372,7 @@ mod tests {
             shares: (0..width * height)
                 .map(|i| 0.25 + (i % 7) as f32 * 0.3)
                 .collect(),
+            per_round: Vec::new(),
         };
         let total: f32 = allocation.shares.iter().sum();
         let blocked = allocation.clone().blockwise(4);
@@ -379,6 +460,7 @@ mod tests {
         let allocation = Allocation {
             width: 2,
             shares: vec![0.25, 1.75],
+            per_round: Vec::new(),
         };
         let (low, high) = (UVec2::new(0, 0), UVec2::new(1, 0));
         assert_eq!(allocation.samples(low, 0), 0);

@@ -7,20 +7,23 @@
 //! the number of threads, the tile size, the order in which tiles finish, and how the samples
 //! are split into passes. With blocks ([`render_blocks`]) the same holds per block: blocks are
 //! aligned to the image, never cross a tile, and their samples are taken together in
-//! sample-index order.
+//! sample-index order. Camera samples splatted into neighbouring pixels
+//! ([`render_blocks_splatting`]) and light paths' splats are added in exact fixed-point sums,
+//! which do not depend on the order of their terms.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use glam::{UVec2, Vec3};
+use glam::{UVec2, Vec2, Vec3};
 use rayon::prelude::*;
 
 pub use crate::adaptive::Allocation;
 use crate::auto::TechniquePilot;
 use crate::budget::MAX_PASS_SECONDS;
 pub use crate::budget::{BudgetError, RenderBudget};
-use crate::film::{Film, PixelSum};
+use crate::film::{Film, FilteredSum, PixelSum};
+use crate::filter::Splatter;
 use crate::progress::Progress;
 pub use crate::stop::StopSignal;
 use crate::technique::{RenderPlan, Transport};
@@ -244,6 +247,57 @@ where
     I: Fn() -> S + Sync + Send,
     F: Fn(&mut S, &[UVec2], u32, &mut [Vec3]) + Sync + Send,
 {
+    render_blocks_splatting(
+        width,
+        height,
+        budget,
+        options,
+        block,
+        None,
+        init,
+        |scratch: &mut S, pixels: &[UVec2], index: u32, values: &mut [Vec3], _: &mut [Vec2]| {
+            sample_block(scratch, pixels, index, values)
+        },
+        light_paths,
+    )
+}
+
+/// [`render_blocks`] where `sample_block(scratch, pixels, sample_index, values, positions)`
+/// also writes each sample's film position (pixels, inside its pixel) to `positions`. With a
+/// `splatter` every finite sample is splatted into all the pixels its filter covers
+/// ([`Splatter::splat`], [`Film::add_filtered`]) besides being added to its own pixel's sums,
+/// and the film's values are the splatted ones; without one the positions are ignored. Samples
+/// crossing a tile's edge are gathered per tile and added to the film after each pass in exact
+/// sums, so the film stays bit-identical whatever the threads, tiles and passes. With an
+/// allocation ([`RenderOptions::allocation`]) the splatted estimate is unbiased only in whole
+/// rounds ([`Allocation::in_rounds`]): each sample then weighs 1 / (its pixel's samples per
+/// round).
+///
+/// # Panics
+/// If `block` is not 1, 2 or 4, or the splatter was made for another image size.
+#[allow(clippy::too_many_arguments)]
+pub fn render_blocks_splatting<S, I, F>(
+    width: u32,
+    height: u32,
+    budget: &RenderBudget,
+    options: &RenderOptions,
+    block: u32,
+    splatter: Option<&Splatter>,
+    init: I,
+    sample_block: F,
+    light_paths: Option<&LightPaths<'_, S>>,
+) -> Result<RenderOutput, BudgetError>
+where
+    I: Fn() -> S + Sync + Send,
+    F: Fn(&mut S, &[UVec2], u32, &mut [Vec3], &mut [Vec2]) + Sync + Send,
+{
+    if let Some(splatter) = splatter {
+        assert_eq!(
+            splatter.size(),
+            UVec2::new(width, height),
+            "the splatter's image size"
+        );
+    }
     assert!(
         matches!(block, 1 | 2 | 4),
         "block edge {block} is not 1, 2 or 4"
@@ -258,8 +312,12 @@ where
         .unwrap_or_else(|| tile_size_for(width, height, threads * balancing))
         .next_multiple_of(block);
     let tiles = tiles(width, height, tile_size);
+    let fresh = || match splatter {
+        Some(_) => Film::splatting(width, height),
+        None => Film::new(width, height),
+    };
     let (mut film, resumed_spp, mut passes, mut non_finite) = match options.resume.as_deref() {
-        None => (Film::new(width, height), 0, 0, NonFiniteCounts::default()),
+        None => (fresh(), 0, 0, NonFiniteCounts::default()),
         Some(point) => {
             let size = (point.film.width(), point.film.height());
             if size != (width, height) {
@@ -268,12 +326,13 @@ where
                     image: (width, height),
                 });
             }
-            (
-                point.film.clone(),
-                point.spp,
-                point.passes,
-                point.non_finite,
-            )
+            let mut film = point.film.clone();
+            if splatter.is_some() && film.filtered().is_none() {
+                film = film
+                    .with_filtered(fresh().filtered().unwrap_or_default().to_vec())
+                    .expect("the sizes match");
+            }
+            (film, point.spp, point.passes, point.non_finite)
         }
     };
     // This run's share of the budget: the sample limit counts the resumed samples too, and the
@@ -324,6 +383,7 @@ where
                 allocation: options.allocation.as_deref(),
             },
             block,
+            splatter,
             &init,
             &sample_block,
             light_paths,
@@ -399,8 +459,9 @@ where
         tiles,
         samples,
         1,
+        None,
         init,
-        &|scratch: &mut S, pixels: &[UVec2], index: u32, values: &mut [Vec3]| {
+        &|scratch: &mut S, pixels: &[UVec2], index: u32, values: &mut [Vec3], _: &mut [Vec2]| {
             values[0] = sample(scratch, pixels[0], index);
         },
         light_paths,
@@ -416,6 +477,7 @@ fn render_block_pass<S, I, F>(
     tiles: &[Tile],
     samples: PassSamples<'_>,
     block: u32,
+    splatter: Option<&Splatter>,
     init: &I,
     sample_block: &F,
     light_paths: Option<&LightPaths<'_, S>>,
@@ -423,7 +485,7 @@ fn render_block_pass<S, I, F>(
 ) -> NonFiniteCounts
 where
     I: Fn() -> S + Sync + Send,
-    F: Fn(&mut S, &[UVec2], u32, &mut [Vec3]) + Sync + Send,
+    F: Fn(&mut S, &[UVec2], u32, &mut [Vec3], &mut [Vec2]) + Sync + Send,
 {
     let done = AtomicUsize::new(0);
     let shared: &Film = film;
@@ -436,13 +498,20 @@ where
         .par_iter()
         .with_max_len(1)
         .map_init(init, |scratch, tile| {
+            let region = splatter.map_or(*tile, |s| splat_region(tile, s));
             let mut result = TileResult {
                 sums: tile.pixels().map(|pixel| *shared.pixel(pixel)).collect(),
+                filtered: match splatter {
+                    Some(_) => vec![FilteredSum::default(); region.pixel_count()],
+                    None => Vec::new(),
+                },
+                region,
                 ..TileResult::default()
             };
             let mut taking = [UVec2::ZERO; MAX_BLOCK_PIXELS];
             let mut slots = [0usize; MAX_BLOCK_PIXELS];
             let mut values = [Vec3::ZERO; MAX_BLOCK_PIXELS];
+            let mut positions = [Vec2::ZERO; MAX_BLOCK_PIXELS];
             for block_origin in block_origins(tile, block) {
                 let mut members = [BlockMember::default(); MAX_BLOCK_PIXELS];
                 let mut size = 0;
@@ -472,11 +541,41 @@ where
                     if count == 0 {
                         continue;
                     }
-                    sample_block(scratch, &taking[..count], index, &mut values[..count]);
-                    for ((&pixel, &slot), &value) in taking[..count].iter().zip(&slots).zip(&values)
+                    sample_block(
+                        scratch,
+                        &taking[..count],
+                        index,
+                        &mut values[..count],
+                        &mut positions[..count],
+                    );
+                    for (((&pixel, &slot), &value), &position) in taking[..count]
+                        .iter()
+                        .zip(&slots)
+                        .zip(&values)
+                        .zip(&positions)
                     {
                         if value.is_finite() {
                             result.sums[slot].add(value);
+                            if let Some(splatter) = splatter {
+                                let (origin, row) = (region.origin, region.size.x as usize);
+                                let filtered = &mut result.filtered;
+                                // In whole rounds a pixel's samples weigh 1 / (its samples
+                                // per round), so that every pixel weighs the same in total.
+                                let per_round = samples
+                                    .allocation
+                                    .and_then(|a| a.per_round(pixel))
+                                    .unwrap_or(1);
+                                let (scale, scale_f64) =
+                                    (1.0 / per_round as f32, 1.0 / f64::from(per_round));
+                                splatter.splat(position, pixel, |target, weight, expected| {
+                                    let at = target - origin;
+                                    filtered[at.y as usize * row + at.x as usize].add(
+                                        value,
+                                        weight * scale,
+                                        expected * scale_f64,
+                                    );
+                                });
+                            }
                         } else {
                             result.counts.count(value);
                         }
@@ -499,10 +598,25 @@ where
         for (pixel, value) in result.splats {
             film.add_splat(pixel, value);
         }
+        for (pixel, sums) in result.region.pixels().zip(&result.filtered) {
+            film.add_filtered(pixel, sums);
+        }
         film.add_light_paths(result.light_paths);
         total.merge(result.counts);
     }
     total
+}
+
+/// The pixels that the samples of `tile` can splat into: the tile grown by the splatter's
+/// reach on every side, cut by the image.
+fn splat_region(tile: &Tile, splatter: &Splatter) -> Tile {
+    let reach = UVec2::splat(splatter.reach());
+    let origin = tile.origin.saturating_sub(reach);
+    let end = (tile.origin + tile.size + reach).min(splatter.size());
+    Tile {
+        origin,
+        size: end - origin,
+    }
 }
 
 /// The tile-relative origins of the blocks of `tile`, in row order.
@@ -571,6 +685,11 @@ fn trace_light_path<S>(
 struct TileResult {
     /// Its pixels' sums, in [`Tile::pixels`] order.
     sums: Vec<PixelSum>,
+    /// The pixels its samples can splat into (the tile itself without a splatter).
+    region: Tile,
+    /// The camera samples splatted into `region`'s pixels, in [`Tile::pixels`] order; empty
+    /// without a splatter.
+    filtered: Vec<FilteredSum>,
     /// Light paths' finite contributions anywhere on the film, in the order traced.
     splats: Vec<(UVec2, Vec3)>,
     /// Light paths traced.

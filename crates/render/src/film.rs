@@ -128,8 +128,84 @@ impl ExactSum {
     }
 }
 
+/// One pixel's share of the camera samples splatted by a filter wider than a pixel (see
+/// [`crate::filter::Splatter`]): the exact sums of the weighted samples `w · L`, of their
+/// squares, and of the samples' expected weights `W` and their squares. The pixel's value is
+/// `Σ w L / Σ W`, unbiased for the filtered radiance (per pixel, linear RGB).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FilteredSum {
+    /// Sum of the weighted samples `w · L`.
+    pub sum: ExactSum,
+    /// Sum of the weighted samples' squares `(w · L)²`, per channel.
+    pub sum_sq: ExactSum,
+    /// Sums of the expected weights `W` and of their squares `W²`, in the fixed point of
+    /// [`ExactSum`] (units of 2^-[`EXACT_FRACTION_BITS`]).
+    pub weight: [i128; 2],
+}
+
+impl FilteredSum {
+    /// Adds one sample `value` (radiance) with weight `weight` here, from a pixel whose
+    /// samples have here the mean weight `expected` (see [`crate::filter::Splatter::splat`]).
+    #[inline]
+    pub fn add(&mut self, value: Vec3, weight: f32, expected: f64) {
+        if weight != 0.0 {
+            let v = (value * weight).as_dvec3();
+            self.sum.add(v);
+            self.sum_sq.add(v * v);
+        }
+        let scale = 2f64.powi(EXACT_FRACTION_BITS);
+        for (sum, w) in self.weight.iter_mut().zip([expected, expected * expected]) {
+            *sum = sum.saturating_add(round_to_i128(w * scale));
+        }
+    }
+
+    /// Adds another pixel's sums to this one.
+    pub fn merge(&mut self, other: &FilteredSum) {
+        self.sum.merge(&other.sum);
+        self.sum_sq.merge(&other.sum_sq);
+        for (sum, o) in self.weight.iter_mut().zip(other.weight) {
+            *sum = sum.saturating_add(o);
+        }
+    }
+
+    /// The samples' summed expected weight `D = Σ W` (dimensionless).
+    pub fn total_weight(&self) -> f64 {
+        self.weight[0] as f64 * 2f64.powi(-EXACT_FRACTION_BITS)
+    }
+
+    /// The pixel's value `Σ w L / Σ W` (radiance), zero before any sample reached it.
+    pub fn value(&self) -> Vec3 {
+        let total = self.total_weight();
+        if total > 0.0 {
+            (self.sum.value() / total).as_vec3()
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// The estimated variance of [`Self::value`], per channel: `(Σ (wL)² − value² Σ W²) / D²`,
+    /// exact for a radiance constant over the filter's footprint (the sample `w L` then varies
+    /// only through `w`, whose mean over pixel `q` is `W`), an overestimate where the radiance
+    /// varies across it (its spread between pixels is counted as noise).
+    pub fn variance(&self) -> Vec3 {
+        let total = self.total_weight();
+        if total <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let mean = self.sum.value() / total;
+        let weight_sq = self.weight[1] as f64 * 2f64.powi(-EXACT_FRACTION_BITS);
+        ((self.sum_sq.value() - mean * mean * weight_sq).max(DVec3::ZERO) / (total * total))
+            .as_vec3()
+    }
+}
+
 /// A `width × height` grid of [`PixelSum`]s, row-major, top row first, and the contributions
 /// light paths splatted onto it.
+///
+/// With a filter wider than a pixel the camera samples are splatted too ([`Film::splatting`]):
+/// each pixel's value is then its [`FilteredSum`]'s, and its [`PixelSum`] keeps the plain sums
+/// of its own samples (unweighted), for their count and for adaptive sampling's noise
+/// estimates.
 ///
 /// A pixel's value is the mean of its own samples plus its share of the light paths' splats:
 /// with `L` light paths traced for an `N`-pixel image, `N / L · Σ splats` (each light path
@@ -147,6 +223,9 @@ pub struct Film {
     splat_sum_sq: Vec<ExactSum>,
     /// Light paths traced, whether or not they splatted anything.
     light_paths: u64,
+    /// Per pixel, the camera samples splatted into it; empty unless the film splats camera
+    /// samples ([`Film::splatting`]).
+    filtered: Vec<FilteredSum>,
 }
 
 /// The light paths' share of a film: per pixel the exact sums of their splats and of the
@@ -206,7 +285,43 @@ impl Film {
             splat_sum: splats.sums,
             splat_sum_sq: splats.sums_sq,
             light_paths: splats.light_paths,
+            filtered: Vec::new(),
         })
+    }
+
+    /// An empty film of `width × height` pixels whose camera samples are splatted by a filter
+    /// wider than a pixel ([`Film::add_filtered`]).
+    pub fn splatting(width: u32, height: u32) -> Self {
+        Self::new(width, height)
+            .with_filtered(vec![
+                FilteredSum::default();
+                width as usize * height as usize
+            ])
+            .expect("the pixel count matches")
+    }
+
+    /// This film with the splatted camera samples `filtered` (row-major, top row first), or
+    /// without any when it is empty; `None` unless it is empty or has one entry per pixel.
+    pub fn with_filtered(mut self, filtered: Vec<FilteredSum>) -> Option<Self> {
+        if !filtered.is_empty() && filtered.len() != self.pixels.len() {
+            return None;
+        }
+        self.filtered = filtered;
+        Some(self)
+    }
+
+    /// Per pixel (row-major, top row first) the splatted camera samples, or `None` when the
+    /// film does not splat them (the box filter: each pixel is the mean of its own samples).
+    pub fn filtered(&self) -> Option<&[FilteredSum]> {
+        (!self.filtered.is_empty()).then_some(self.filtered.as_slice())
+    }
+
+    /// Adds the splatted sums `sums` to `pixel`'s; panics outside the film or when the film does
+    /// not splat camera samples.
+    pub fn add_filtered(&mut self, pixel: UVec2, sums: &FilteredSum) {
+        assert!(!self.filtered.is_empty(), "the film does not splat");
+        let i = self.index(pixel);
+        self.filtered[i].merge(sums);
     }
 
     /// Per pixel (row-major, top row first) the exact sums of the light paths' splats and of
@@ -233,21 +348,25 @@ impl Film {
         self.light_paths
     }
 
-    /// The estimate of `pixel`: the mean of its samples plus its share of the splats.
+    /// The estimate of `pixel`: the mean of its samples (or, when the film splats camera
+    /// samples, [`FilteredSum::value`]) plus its share of the light paths' splats.
     pub fn pixel_value(&self, pixel: UVec2) -> Vec3 {
         let i = self.index(pixel);
         self.value(i)
     }
 
     /// The estimated variance of [`Film::pixel_value`], per channel: the samples' variance of the
-    /// mean plus that of the splat estimate, `N² / L · (Σs²/L − (Σs/L)²)`.
+    /// mean (or [`FilteredSum::variance`]) plus that of the splat estimate, `N² / L · (Σs²/L − (Σs/L)²)`.
     pub fn pixel_variance(&self, pixel: UVec2) -> Vec3 {
         let i = self.index(pixel);
         self.variance(i)
     }
 
     fn value(&self, i: usize) -> Vec3 {
-        let mean = self.pixels[i].mean();
+        let mean = match self.filtered.get(i) {
+            Some(filtered) => filtered.value(),
+            None => self.pixels[i].mean(),
+        };
         if self.light_paths == 0 {
             return mean;
         }
@@ -255,7 +374,10 @@ impl Film {
     }
 
     fn variance(&self, i: usize) -> Vec3 {
-        let variance = self.pixels[i].variance_of_mean();
+        let variance = match self.filtered.get(i) {
+            Some(filtered) => filtered.variance(),
+            None => self.pixels[i].variance_of_mean(),
+        };
         if self.light_paths < 2 {
             return variance;
         }
@@ -331,6 +453,14 @@ impl Film {
             mine.merge(theirs);
         }
         self.light_paths += other.light_paths;
+        // A film without splatted samples counts as one whose splatted sums are all zero.
+        if self.filtered.is_empty() {
+            self.filtered = other.filtered.clone();
+        } else {
+            for (mine, theirs) in self.filtered.iter_mut().zip(&other.filtered) {
+                mine.merge(theirs);
+            }
+        }
         Ok(())
     }
 

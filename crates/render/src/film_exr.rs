@@ -13,6 +13,11 @@
 //!   the least significant (two's complement).
 //! - `strata.splat.R0` … `strata.splat.B3` (uint), only when light paths were traced: the exact
 //!   sums of the light paths' splats, in the same form.
+//! - `strata.filtered.R0` … `strata.filtered.B3` and `strata.filtered.W0` … `strata.filtered.W3`
+//!   (uint), only when camera samples were splatted by a filter wider than a pixel: per pixel
+//!   the exact sums of the splatted samples and of their expected weights
+//!   ([`crate::film::FilteredSum`]), in the same form. The sample sums above then hold each
+//!   pixel's own samples, unweighted.
 //!
 //! And two header attributes:
 //!
@@ -49,7 +54,7 @@ use exr::prelude::{
 };
 
 use crate::atomic_write::write_atomically;
-use crate::film::{ExactSum, Film, PixelSum, Splats};
+use crate::film::{ExactSum, Film, FilteredSum, PixelSum, Splats};
 use crate::image::SPP_ATTRIBUTE;
 use crate::technique::RenderPlan;
 use sampling::sampler::SamplerKind;
@@ -69,6 +74,9 @@ const SUM_PREFIX: &str = "strata.sum";
 
 /// Prefix of the exact splat sums' channels.
 const SPLAT_PREFIX: &str = "strata.splat";
+
+/// Prefix of the splatted camera samples' channels.
+const FILTERED_PREFIX: &str = "strata.filtered";
 
 /// The colour channels' names, in the order of [`ExactSum`]'s components.
 const COLOURS: [&str; 3] = ["R", "G", "B"];
@@ -228,8 +236,15 @@ pub fn render_settings(plan: &RenderPlan, desc: &SceneDesc) -> String {
     } else {
         String::new()
     };
+    // Filters wider than a pixel splat camera samples (`crate::filter::Splatter`); renders
+    // that importance-sampled them instead do not belong with these.
+    let splat = if matches!(desc.film.filter, scene::FilterDesc::Box) {
+        ""
+    } else {
+        "; splat"
+    };
     format!(
-        "strata {}; film {:?}; {:?}; sampler {:?}{pattern}; adaptive {}",
+        "strata {}; film {:?}; {:?}; sampler {:?}{pattern}; adaptive {}{splat}",
         env!("CARGO_PKG_VERSION"),
         desc.film,
         plan.transport,
@@ -276,6 +291,20 @@ pub fn write_film_exr(path: &Path, film: &Film, record: &RenderRecord) -> Result
     push_exact_channels(&mut channels, SUM_PREFIX, &sums);
     if film.light_paths() > 0 {
         push_exact_channels(&mut channels, SPLAT_PREFIX, film.splat_sums().0);
+    }
+    if let Some(filtered) = film.filtered() {
+        let sums: Vec<ExactSum> = filtered.iter().map(|f| f.sum).collect();
+        push_exact_channels(&mut channels, FILTERED_PREFIX, &sums);
+        for limb in 0..4 {
+            let values = filtered
+                .iter()
+                .map(|f| (f.weight[0] as u128 >> (32 * limb)) as u32)
+                .collect();
+            channels.push(AnyChannel::new(
+                format!("{FILTERED_PREFIX}.W{limb}").as_str(),
+                FlatSamples::U32(values),
+            ));
+        }
     }
     let mut attributes = LayerAttributes::default();
     attributes
@@ -418,7 +447,33 @@ pub fn read_film_exr(path: &Path) -> Result<(Film, RenderRecord), String> {
         sums_sq: vec![ExactSum::default(); pixel_count],
         light_paths,
     };
+    let has_filtered = channels
+        .iter()
+        .any(|c| c.name.to_string() == format!("{FILTERED_PREFIX}.W0"));
+    let filtered = if has_filtered {
+        let mut weight_limbs = Vec::with_capacity(4);
+        for limb in 0..4 {
+            weight_limbs.push(find(&format!("{FILTERED_PREFIX}.W{limb}"))?);
+        }
+        exact(FILTERED_PREFIX)?
+            .into_iter()
+            .enumerate()
+            .map(|(i, sum)| {
+                let bits = (0..4).fold(0u128, |bits, limb| {
+                    bits | u128::from(weight_limbs[limb][i]) << (32 * limb)
+                });
+                FilteredSum {
+                    sum,
+                    weight: [bits as i128, 0],
+                    ..FilteredSum::default()
+                }
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
     let film = Film::from_parts(width, height, pixels, splats)
+        .and_then(|film| film.with_filtered(filtered))
         .ok_or_else(|| named("channel sizes do not match the image size".to_string()))?;
     Ok((film, record))
 }
@@ -596,6 +651,26 @@ mod tests {
             film.pixels()[0].sum.0[0] < 0 && film.pixels()[0].sum.0[2] > 1i128 << 100,
             "the test covers negative sums and the top limb"
         );
+    }
+
+    #[test]
+    fn splatted_sums_round_trip_every_bit() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("filtered.exr");
+        let (film, record) = film_and_record(0);
+        let mut filtered = vec![FilteredSum::default(); 6];
+        filtered[1].add(Vec3::new(-1.5, 1e-3, 3e20), 0.25, 0.2);
+        filtered[1].add(Vec3::new(0.5, 2.0, 7.0), -0.01, 0.01);
+        filtered[5].add(Vec3::splat(1.0 / 3.0), 0.0, 1e-3);
+        let film = film.with_filtered(filtered.clone()).unwrap();
+        write_film_exr(&path, &film, &record).unwrap();
+        let (read, _) = read_film_exr(&path).unwrap();
+        let read_filtered = read.filtered().expect("splatted sums are read back");
+        for (a, b) in read_filtered.iter().zip(&filtered) {
+            assert_eq!((a.sum, a.weight[0]), (b.sum, b.weight[0]));
+        }
+        assert_eq!(read.to_image(), film.to_image());
+        assert!(read_film_exr(&dir.path().join("none.exr")).is_err());
     }
 
     #[test]

@@ -185,6 +185,7 @@ fn saved_state(output: &RenderOutput, plan: &RenderPlan, identity: Identity) -> 
             nan_count: output.non_finite.nan,
             inf_count: output.non_finite.inf,
             light_paths: output.film.light_paths(),
+            filtered: output.film.filtered().is_some(),
             sampler_spp: plan.sampler_spp,
             scene_hash: identity.scene_hash,
             settings: identity.settings,

@@ -5,9 +5,9 @@ use crate::adaptive::{Allocation, MIN_PILOT_SPP, PixelCosts, pilot_seed, split_b
 use crate::auto::{self, AutoChoice, PilotRenders, TechniquePilot, Trials};
 use crate::driver::{
     BudgetError, LightPaths, MAX_BLOCK_PIXELS, RenderBudget, RenderOptions, RenderOutput,
-    render_blocks, render_with_light_paths,
+    render_blocks_splatting,
 };
-use crate::filter::{Filter, FilterError};
+use crate::filter::{Filter, FilterError, Splatter};
 use crate::image::Image;
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
@@ -314,9 +314,17 @@ fn render_adaptive<T: RayTally + Default + Send>(
     let image_options = RenderOptions {
         allocation: Some(Arc::new({
             let allocation = Allocation::from_pilot(&pilot.film, &costs);
-            match reuse_block(plan) {
+            let allocation = match reuse_block(plan) {
                 Some(block) => allocation.blockwise(block),
                 None => allocation,
+            };
+            // Splatted samples weigh 1 / (their pixel's samples per round), known before the
+            // render, where the final count is not (see `Splatter`).
+            let (width, height) = (scene.desc.film.width, scene.desc.film.height);
+            if Splatter::new(filter, width, height).is_some() {
+                allocation.in_rounds()
+            } else {
+                allocation
             }
         })),
         ..options.clone()
@@ -523,10 +531,23 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         slot: BsdfSlot::default(),
         finish,
     };
+    // Filters wider than a pixel splat each camera sample, taken uniformly in its pixel, into
+    // every pixel they cover (see `Splatter`), which at equal samples has about a third of the
+    // variance of filter importance sampling for the default gaussian where path noise
+    // dominates. An adaptive-sampling pilot (`costs`) only estimates its pixels' own noise and
+    // splats nothing, but takes its samples where the image will.
+    let splatter = Splatter::new(filter, width, height);
+    let uniform_in_pixel = splatter.is_some();
+    let splatter = if costs.is_none() { splatter } else { None };
     // The camera ray of `pixel`'s sample `sample_index`, and where on the film it starts.
     let camera_ray = |sampler: &mut S, pixel: UVec2, sample_index: u32| {
         sampler.start_pixel_sample(pixel, sample_index);
-        let film_position = filter.sample_film_position(pixel, sampler.next_2d(), width, height);
+        let u = sampler.next_2d();
+        let film_position = if uniform_in_pixel {
+            Splatter::film_position(pixel, u)
+        } else {
+            filter.sample_film_position(pixel, u, width, height)
+        };
         let u_lens = if has_lens {
             sampler.next_2d()
         } else {
@@ -535,7 +556,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         (camera.generate_ray(film_position, u_lens), film_position)
     };
     let filter_weight = |radiance: Vec3, film_position: Vec2, pixel: UVec2| {
-        if signed_filter {
+        if signed_filter && !uniform_in_pixel {
             radiance * filter.sample_weight(film_position, pixel, width, height)
         } else {
             radiance
@@ -544,17 +565,19 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     if let Integrator::Path(path) = integrator
         && let Some(reuse) = path.settings().path_reuse
     {
-        return render_blocks(
+        return render_blocks_splatting(
             width,
             height,
             &plan.budget,
             options,
             reuse.block,
+            splatter.as_ref(),
             new_worker,
             |worker: &mut Worker<'_, S, T>,
              pixels: &[UVec2],
              sample_index: u32,
-             values: &mut [Vec3]| {
+             values: &mut [Vec3],
+             positions: &mut [Vec2]| {
                 let mut paths = [ReusablePath::default(); MAX_BLOCK_PIXELS];
                 let mut film_positions = [Vec2::ZERO; MAX_BLOCK_PIXELS];
                 for ((&pixel, reusable), film_position) in
@@ -593,18 +616,27 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
                 {
                     *value = filter_weight(*value, film_position, pixel);
                 }
+                positions.copy_from_slice(&film_positions[..pixels.len()]);
             },
             light_paths,
         );
     }
-    render_with_light_paths(
+    render_blocks_splatting(
         width,
         height,
         &plan.budget,
         options,
+        1,
+        splatter.as_ref(),
         new_worker,
-        |worker: &mut Worker<'_, S, T>, pixel: UVec2, sample_index: u32| -> Vec3 {
+        |worker: &mut Worker<'_, S, T>,
+         pixels: &[UVec2],
+         sample_index: u32,
+         values: &mut [Vec3],
+         positions: &mut [Vec2]| {
+            let pixel = pixels[0];
             let (ray, film_position) = camera_ray(&mut worker.sampler, pixel, sample_index);
+            positions[0] = film_position;
             let sampler = &mut worker.sampler;
             let rays_before = costs.map(|_| worker.tally.counts());
             let radiance = match &integrator {
@@ -618,7 +650,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             if let (Some(costs), Some(before)) = (costs, rays_before) {
                 costs.add(pixel, worker.tally.counts().since(before));
             }
-            filter_weight(radiance, film_position, pixel)
+            values[0] = filter_weight(radiance, film_position, pixel);
         },
         light_paths,
     )

@@ -5,7 +5,10 @@
 //! sums, row-major, top row first: `sum` r, g, b as little-endian `i128` fixed point
 //! ([`crate::film::ExactSum`]), `sum_sq` r, g, b as little-endian `f64`, then `count` as a
 //! little-endian `u32`, then the light paths' splat sums r, g, b and their squares' as
-//! little-endian `i128` fixed point ([`PIXEL_BYTES`] bytes per pixel). Resuming adds new
+//! little-endian `i128` fixed point ([`PIXEL_BYTES`] bytes per pixel). When the film splats
+//! camera samples ([`StateHeader::filtered`]), every pixel's [`crate::film::FilteredSum`]
+//! follows, row-major: its sum and sum of squares r, g, b and its two weight sums, all as
+//! little-endian `i128` fixed point ([`FILTERED_BYTES`] bytes per pixel). Resuming adds new
 //! samples and splats to exactly these sums, so a render stopped and resumed any number of times
 //! gives the same bits as one uninterrupted render.
 
@@ -17,7 +20,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::atomic_write::{WriteError, write_bytes_atomically};
 use crate::driver::{NonFiniteCounts, ResumePoint};
-use crate::film::{ExactSum, Film, PixelSum, Splats};
+use crate::film::{ExactSum, Film, FilteredSum, PixelSum, Splats};
 
 /// What identifies the state format in [`StateHeader::format`].
 pub const FORMAT: &str = "strata-render-state";
@@ -29,6 +32,10 @@ pub const VERSION: u32 = 3;
 /// `f64`) and a `u32` count, then the light paths' exact splat sums (three `i128`) and sums of
 /// squares (three `i128`).
 pub const PIXEL_BYTES: usize = SPLATS_OFFSET + 6 * 16;
+
+/// Bytes per pixel of the splatted camera samples, when there are any: sum and sum of squares
+/// (three `i128` each) and the two weight sums (`i128`).
+pub const FILTERED_BYTES: usize = 8 * 16;
 
 /// Where in a pixel's bytes its splat sums start.
 const SPLATS_OFFSET: usize = 3 * 16 + 3 * 8 + 4;
@@ -57,6 +64,11 @@ pub struct StateHeader {
     pub inf_count: u64,
     /// Light paths traced into the film (one per pixel sample with light tracing, else 0).
     pub light_paths: u64,
+    /// Whether the film splats camera samples (a filter wider than a pixel), so that its
+    /// splatted sums follow the pixel sums. Absent (false) in files written before splatting
+    /// existed, whose layout is that of a film without splatted sums.
+    #[serde(default)]
+    pub filtered: bool,
     /// Sample count the sampler's pattern is laid out for; a resumed render keeps it.
     pub sampler_spp: u32,
     /// [`crate::fingerprint::scene_fingerprint`] of the scene: its content, including the mesh
@@ -108,6 +120,17 @@ impl RenderState {
             }
             bytes.extend_from_slice(&pixel.count.to_le_bytes());
             for v in splat_sum.0.into_iter().chain(splat_sum_sq.0) {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        for sums in self.film.filtered().unwrap_or_default() {
+            for v in sums
+                .sum
+                .0
+                .into_iter()
+                .chain(sums.sum_sq.0)
+                .chain(sums.weight)
+            {
                 bytes.extend_from_slice(&v.to_le_bytes());
             }
         }
@@ -180,7 +203,8 @@ fn parse_header(line: &[u8]) -> Result<StateHeader, String> {
 
 /// Bytes of pixel sums a checked `header` calls for.
 fn data_bytes(header: &StateHeader) -> usize {
-    header.width as usize * header.height as usize * PIXEL_BYTES
+    let per_pixel = PIXEL_BYTES + if header.filtered { FILTERED_BYTES } else { 0 };
+    header.width as usize * header.height as usize * per_pixel
 }
 
 /// The state of `header` with the pixel sums in `data`, which must have exactly their size.
@@ -194,10 +218,12 @@ fn decode(header: StateHeader, data: &[u8]) -> Result<RenderState, String> {
             header.height
         ));
     }
-    let mut pixels = Vec::with_capacity(expected / PIXEL_BYTES);
+    let count = header.width as usize * header.height as usize;
+    let (data, filtered_data) = data.split_at(count * PIXEL_BYTES);
+    let mut pixels = Vec::with_capacity(count);
     let mut splats = Splats {
-        sums: Vec::with_capacity(expected / PIXEL_BYTES),
-        sums_sq: Vec::with_capacity(expected / PIXEL_BYTES),
+        sums: Vec::with_capacity(count),
+        sums_sq: Vec::with_capacity(count),
         light_paths: header.light_paths,
     };
     for bytes in data.chunks_exact(PIXEL_BYTES) {
@@ -207,7 +233,23 @@ fn decode(header: StateHeader, data: &[u8]) -> Result<RenderState, String> {
             .sums_sq
             .push(read_exact(&bytes[SPLATS_OFFSET + 48..]));
     }
+    let filtered = filtered_data
+        .chunks_exact(FILTERED_BYTES)
+        .map(|bytes| {
+            let weight = |i: usize| {
+                let mut b = [0u8; 16];
+                b.copy_from_slice(&bytes[96 + 16 * i..112 + 16 * i]);
+                i128::from_le_bytes(b)
+            };
+            FilteredSum {
+                sum: read_exact(bytes),
+                sum_sq: read_exact(&bytes[48..]),
+                weight: [weight(0), weight(1)],
+            }
+        })
+        .collect();
     let film = Film::from_parts(header.width, header.height, pixels, splats)
+        .and_then(|film| film.with_filtered(filtered))
         .ok_or("pixel count does not match the size")?;
     Ok(RenderState { header, film })
 }
@@ -262,6 +304,7 @@ mod tests {
                 nan_count: 1,
                 inf_count: 0,
                 light_paths: 6,
+                filtered: false,
                 sampler_spp: 16,
                 scene_hash: "0123456789abcdef".to_string(),
                 settings: "mis".to_string(),
@@ -278,6 +321,22 @@ mod tests {
         let path = dir.path().join("s.state");
         state.write(&path).unwrap();
         assert_eq!(RenderState::read(&path).unwrap(), state);
+    }
+
+    #[test]
+    fn splatted_sums_round_trip_every_bit() {
+        let mut state = state();
+        let mut sums = FilteredSum::default();
+        sums.add(Vec3::new(0.1, 2.5, 1e-30), 0.3, 0.123);
+        sums.add(Vec3::new(-4.0, 1e5, 7.0), -0.01, 1e-9);
+        let mut filtered = vec![FilteredSum::default(); 6];
+        filtered[4] = sums;
+        state.film = state.film.with_filtered(filtered).unwrap();
+        state.header.filtered = true;
+        let bytes = state.to_bytes();
+        assert_eq!(RenderState::from_bytes(&bytes).unwrap(), state);
+        let truncated = RenderState::from_bytes(&bytes[..bytes.len() - 1]).unwrap_err();
+        assert!(truncated.contains("truncated"), "{truncated}");
     }
 
     #[test]

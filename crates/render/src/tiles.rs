@@ -9,7 +9,7 @@ pub const MAX_TILE_SIZE: u32 = 16;
 pub const MIN_TILE_SIZE: u32 = 4;
 
 /// A rectangle of pixels: `origin` is its top-left pixel, `size` its width and height in pixels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Tile {
     /// Top-left pixel.
     pub origin: UVec2,
