@@ -565,15 +565,11 @@ where
                                     .allocation
                                     .and_then(|a| a.per_round(pixel))
                                     .unwrap_or(1);
-                                let (scale, scale_f64) =
-                                    (1.0 / per_round as f32, 1.0 / f64::from(per_round));
-                                splatter.splat(position, pixel, |target, weight, expected| {
+                                let scale = 1.0 / per_round as f32;
+                                splatter.splat(position, pixel, |target, weight, _| {
                                     let at = target - origin;
-                                    filtered[at.y as usize * row + at.x as usize].add(
-                                        value,
-                                        weight * scale,
-                                        expected * scale_f64,
-                                    );
+                                    filtered[at.y as usize * row + at.x as usize]
+                                        .add_weighted(value, weight * scale);
                                 });
                             }
                         } else {
@@ -584,6 +580,9 @@ where
                         }
                     }
                 }
+            }
+            if let Some(splatter) = splatter {
+                add_expected_weights(splatter, tile, shared, samples.allocation, &mut result);
             }
             let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
             report(finished as f64 / tiles.len() as f64);
@@ -605,6 +604,34 @@ where
         total.merge(result.counts);
     }
     total
+}
+
+/// Adds to `result.filtered` the expected weights of the samples `tile`'s pixels took this pass
+/// (their counts in `result.sums` against those in `film`): per sample and target pixel,
+/// [`Splatter::for_each_expected`] over the pixel's samples per round, as each sample's own
+/// weight is scaled. Once per pixel and pass rather than per sample, with the same bits
+/// ([`FilteredSum::add_expected`]).
+fn add_expected_weights(
+    splatter: &Splatter,
+    tile: &Tile,
+    film: &Film,
+    allocation: Option<&Allocation>,
+    result: &mut TileResult,
+) {
+    let (origin, row) = (result.region.origin, result.region.size.x as usize);
+    for (pixel, sums) in tile.pixels().zip(&result.sums) {
+        let taken = sums.count - film.pixel(pixel).count;
+        if taken == 0 {
+            continue;
+        }
+        let per_round = allocation.and_then(|a| a.per_round(pixel)).unwrap_or(1);
+        let scale = 1.0 / f64::from(per_round);
+        splatter.for_each_expected(pixel, |target, expected| {
+            let at = target - origin;
+            result.filtered[at.y as usize * row + at.x as usize]
+                .add_expected(taken, expected * scale);
+        });
+    }
 }
 
 /// The pixels that the samples of `tile` can splat into: the tile grown by the splatter's

@@ -114,6 +114,21 @@ impl ExactSum {
         }
     }
 
+    /// [`Self::add`] with one test of magnitude for all three channels instead of one each, for
+    /// the hot loop of splatting: the same bits.
+    #[inline]
+    pub fn add_fast(&mut self, value: DVec3) {
+        let scaled = value * 2f64.powi(EXACT_FRACTION_BITS);
+        if scaled.abs().max_element() < 2f64.powi(51) {
+            let rounded = (scaled + DVec3::splat(ROUNDING_BIAS)) - DVec3::splat(ROUNDING_BIAS);
+            for (sum, r) in self.0.iter_mut().zip(rounded.to_array()) {
+                *sum = sum.saturating_add(r as i64 as i128);
+            }
+        } else {
+            self.add(value);
+        }
+    }
+
     /// Adds another sum's terms.
     pub fn merge(&mut self, other: &ExactSum) {
         for (sum, o) in self.0.iter_mut().zip(other.0) {
@@ -145,17 +160,33 @@ pub struct FilteredSum {
 
 impl FilteredSum {
     /// Adds one sample `value` (radiance) with weight `weight` here, from a pixel whose
-    /// samples have here the mean weight `expected` (see [`crate::filter::Splatter::splat`]).
+    /// samples have here the mean weight `expected` (see [`crate::filter::Splatter::splat`]):
+    /// [`Self::add_weighted`] and [`Self::add_expected`] for one sample.
     #[inline]
     pub fn add(&mut self, value: Vec3, weight: f32, expected: f64) {
+        self.add_weighted(value, weight);
+        self.add_expected(1, expected);
+    }
+
+    /// Adds one sample `value` (radiance) with weight `weight` to the weighted sums only.
+    #[inline]
+    pub fn add_weighted(&mut self, value: Vec3, weight: f32) {
         if weight != 0.0 {
             let v = (value * weight).as_dvec3();
-            self.sum.add(v);
-            self.sum_sq.add(v * v);
+            self.sum.add_fast(v);
+            self.sum_sq.add_fast(v * v);
         }
+    }
+
+    /// Adds the expected weights of `count` samples whose mean weight here is `expected`: each
+    /// sample's `W` and `W²` rounded once to the fixed point, so that `count` at once gives the
+    /// same bits as one at a time.
+    #[inline]
+    pub fn add_expected(&mut self, count: u32, expected: f64) {
         let scale = 2f64.powi(EXACT_FRACTION_BITS);
         for (sum, w) in self.weight.iter_mut().zip([expected, expected * expected]) {
-            *sum = sum.saturating_add(round_to_i128(w * scale));
+            let term = round_to_i128(w * scale).saturating_mul(i128::from(count));
+            *sum = sum.saturating_add(term);
         }
     }
 
@@ -548,6 +579,21 @@ mod tests {
         huge.add(DVec3::splat(1e30));
         huge.add(DVec3::splat(1e30));
         assert!(huge.value().min_element() > 0.0);
+    }
+
+    #[test]
+    fn the_fast_exact_add_has_the_bits_of_the_plain_one() {
+        let (mut fast, mut plain) = (ExactSum::default(), ExactSum::default());
+        for v in [
+            DVec3::new(0.1, -2.5, 1e-20),
+            DVec3::new(7.999, 8.0, -8.001),
+            DVec3::new(1e20, -3.0, 0.5),
+            DVec3::new(2.5 * 2f64.powi(-48), -2.5 * 2f64.powi(-48), 3e7),
+        ] {
+            fast.add_fast(v);
+            plain.add(v);
+            assert_eq!(fast, plain, "{v}");
+        }
     }
 
     #[test]

@@ -186,6 +186,28 @@ impl Splatter {
         }
     }
 
+    /// Calls `visit(pixel, expected)` for every pixel within [`Self::reach`] of `source` inside
+    /// the image, with the mean weight there of a position uniform in `source` (`expected` of
+    /// [`Self::splat`]). Row by row, left to right.
+    pub fn for_each_expected(&self, source: UVec2, mut visit: impl FnMut(UVec2, f64)) {
+        let (columns, rows) = (&self.columns, &self.rows);
+        let span = |axis: &AxisWeights, q: u32| {
+            let first = q.saturating_sub(axis.reach);
+            let last = (q + axis.reach).min(axis.size - 1);
+            let row = 2 * axis.reach as usize + 1;
+            let base = q as usize * row + (first + axis.reach - q) as usize;
+            (first..=last, base)
+        };
+        let (xs, x_base) = span(columns, source.x);
+        let (ys, y_base) = span(rows, source.y);
+        for (j, y) in ys.enumerate() {
+            let ey = rows.expected[y_base + j];
+            for (i, x) in xs.clone().enumerate() {
+                visit(UVec2::new(x, y), columns.expected[x_base + i] * ey);
+            }
+        }
+    }
+
     /// A film position uniform in `pixel` for the sampler's `u ∈ [0, 1)²`: `pixel + u`, kept
     /// inside the pixel where `f32` rounding would put it on the next pixel's edge.
     pub fn film_position(pixel: UVec2, u: Vec2) -> Vec2 {
