@@ -584,7 +584,7 @@ fn thin_lens() {
     check_scene(
         "thinlens",
         Version::file("thinlens.xml"),
-        Budget::full(768, 80, 4),
+        Budget::full(3072, 80, 4),
         None,
     );
 }
