@@ -14,10 +14,10 @@
 //! So `E[I_p] = Σ_q n(q) ∫_q w_p L / D_p`, which with equal counts `n` is `n ∫_image w_p L / n`,
 //! exactly the filtered pixel value `∫ f L / ∫ f` that filter importance sampling and Mitsuba
 //! estimate (the partition of unity `Σ_q W(q → p) = 1` holds up to `f32` rounding, 1e-7). With
-//! unequal counts (adaptive sampling) it is the value of the filter `f · n` instead, the
-//! density-weighted mean Mitsuba's ratio `Σ f L / Σ f` converges to; both agree wherever the
-//! counts are equal over a filter's footprint, and renders with unequal counts therefore keep
-//! filter importance sampling (`crate::session`).
+//! unequal counts (adaptive sampling) each sample instead weighs `1 / k(q)`, where pixel `q`
+//! takes `k(q)` samples in each of `t` whole rounds ([`crate::adaptive::Allocation::in_rounds`]):
+//! then `n(q) / k(q) = t` for every pixel and the same argument gives the filtered value again,
+//! where Mitsuba's ratio `Σ f L / Σ f` would converge to the density-weighted value of `f · n`.
 //!
 //! Against filter importance sampling, where each pixel averages only its own samples, every
 //! pixel now averages about `(2 · radius)²` pixels' samples weighted by the filter: for
