@@ -42,6 +42,7 @@
 
 mod aabb;
 mod accel;
+mod animated_transform;
 mod hit;
 mod icosphere;
 mod mesh;
@@ -58,6 +59,7 @@ mod x4;
 
 pub use aabb::Aabb;
 pub use accel::Accel;
+pub use animated_transform::{AnimatedTransform, AnimationError};
 pub use hit::Hit;
 pub use mesh::{MeshError, TriangleMesh};
 pub use offset::{gamma, offset_ray_origin, sphere_point_error, triangle_point_error};
