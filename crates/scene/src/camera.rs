@@ -232,6 +232,7 @@ mod tests {
             lens: None,
             principal_point_offset: offset,
             orthographic: false,
+            shutter: [0.0, 0.0],
         };
         Camera::new(&sensor, 64, 48)
     }
@@ -347,6 +348,7 @@ mod tests {
             lens: None,
             principal_point_offset: [0.0, 0.0],
             orthographic: true,
+            shutter: [0.0, 0.0],
         };
         let camera = Camera::new(&sensor, 64, 32);
         assert!(!camera.connects() && !camera.has_lens());

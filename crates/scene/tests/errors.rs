@@ -478,6 +478,84 @@ fn transforms() {
     );
 }
 
+/// `<animation>` (Strata's extension for motion blur) and the sensor's shutter.
+#[test]
+fn animations() {
+    let shape = |animation: &str| {
+        wrap(&format!(
+            "<shape type=\"cube\">\n<animation name=\"to_world\">\n{animation}\n</animation>\n</shape>"
+        ))
+    };
+    let key = |time: &str, op: &str| format!("<transform time=\"{time}\">{op}</transform>");
+    expect(
+        "one_keyframe.xml",
+        &shape(&key("0", "<translate x=\"1\"/>")),
+        5,
+        "<animation name=\"to_world\">",
+        "at least two keyframes",
+    );
+    expect(
+        "out_of_order.xml",
+        &shape(&format!("{}\n{}", key("1", ""), key("0.5", ""))),
+        7,
+        "<transform>",
+        "keyframe 2 must come strictly after",
+    );
+    expect(
+        "equal_times.xml",
+        &shape(&format!("{}\n{}", key("0", ""), key("0", ""))),
+        7,
+        "<transform>",
+        "strictly",
+    );
+    expect(
+        "flat_keyframe.xml",
+        &shape(&format!(
+            "{}\n{}",
+            key("0", ""),
+            key("1", "<scale y=\"0\"/>")
+        )),
+        7,
+        "<transform>",
+        "singular",
+    );
+    expect(
+        "not_a_keyframe.xml",
+        &shape("<translate x=\"1\"/>"),
+        6,
+        "<translate>",
+        "only <transform time",
+    );
+    expect(
+        "no_time.xml",
+        &shape(&format!("{}\n<transform/>", key("0", ""))),
+        7,
+        "<transform>",
+        "time",
+    );
+    expect(
+        "moving_cube.xml",
+        &shape(&format!(
+            "{}\n{}",
+            key("0", ""),
+            key("1", "<translate x=\"1\"/>")
+        )),
+        5,
+        "<animation name=\"to_world\">",
+        "cannot render yet",
+    );
+    expect(
+        "shutter.xml",
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<float name=\"shutter_open\" value=\"1\"/>\n<float name=\"shutter_close\" value=\"0.5\"/>\n</sensor>\n</scene>",
+        5,
+        "<float name=\"shutter_close\"",
+        "must not come before shutter_open",
+    );
+    let open_shutter = "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<float name=\"shutter_open\" value=\"0.25\"/>\n<float name=\"shutter_close\" value=\"0.75\"/>\n</sensor>\n</scene>";
+    let scene = common::load("open_shutter.xml", open_shutter).expect("a valid shutter loads");
+    assert_eq!(scene.sensor.shutter, [0.25, 0.75]);
+}
+
 #[test]
 fn film_and_settings() {
     let film = |body: &str| {

@@ -96,6 +96,10 @@ pub struct SensorDesc {
     /// over x ∈ [−1, 1] and y ∈ [−1/aspect, 1/aspect] of its frame (`to_world` may scale that
     /// region); the field of view, lens and principal point do not apply.
     pub orthographic: bool,
+    /// The shutter's opening and closing times, `shutter_open` ≤ `shutter_close` (scene time
+    /// units, both 0 by default as in Mitsuba 3): the interval a camera sample's time is drawn
+    /// from once something in the scene moves. Nothing moves yet, so no render draws a time.
+    pub shutter: [f64; 2],
 }
 
 impl SensorDesc {

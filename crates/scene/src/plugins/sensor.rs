@@ -120,6 +120,22 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
     } else {
         None
     };
+    // Times keep double precision: a shutter of 1e-9 may open at any time.
+    let mut time = |name: &'static str| -> Result<f64> {
+        let value = params.float_or(name, 0.0)?;
+        if !value.is_finite() {
+            return Err(params
+                .loc_of(name)
+                .error(format!("\"{name}\" must be finite, got {value}")));
+        }
+        Ok(value)
+    };
+    let shutter = [time("shutter_open")?, time("shutter_close")?];
+    if shutter[0] > shutter[1] {
+        return Err(params
+            .loc_of("shutter_close")
+            .error("shutter_close must not come before shutter_open"));
+    }
     params.finish()?;
     Ok(Camera {
         sensor: SensorDesc {
@@ -138,6 +154,7 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
             lens,
             principal_point_offset,
             orthographic,
+            shutter,
         },
         film: match film {
             Some(film) => film,

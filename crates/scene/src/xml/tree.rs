@@ -36,7 +36,7 @@ const OBJECT_TAGS: [&str; 13] = [
 ];
 
 /// Tags that set a property of the enclosing object.
-const PROPERTY_TAGS: [&str; 9] = [
+const PROPERTY_TAGS: [&str; 10] = [
     "float",
     "integer",
     "boolean",
@@ -46,6 +46,7 @@ const PROPERTY_TAGS: [&str; 9] = [
     "rgb",
     "spectrum",
     "transform",
+    "animation",
 ];
 
 /// Other tags understood inside an object.
@@ -76,6 +77,9 @@ pub(crate) enum Value {
     /// at least two, wavelengths increasing.
     SpectrumPairs(Vec<(f64, f64)>),
     Transform(DMat4),
+    /// A transform that moves: `<animation>` with `<transform time="t">` keyframes (Strata's
+    /// extension, after Mitsuba 0.6), checked by [`geometry::AnimatedTransform::new`].
+    Animation(Vec<(f64, DMat4)>),
 }
 
 impl Value {
@@ -91,6 +95,7 @@ impl Value {
             Value::Rgb(_) => "rgb",
             Value::Spectrum(_) | Value::SpectrumPairs(_) => "spectrum",
             Value::Transform(_) => "transform",
+            Value::Animation(_) => "animation",
         }
     }
 }
@@ -572,6 +577,15 @@ impl Builder {
                 loc,
             });
         }
+        if tag == "animation" {
+            attrs.check(&["name"], &["name"], &loc)?;
+            let keyframes = self.animation(ctx, node, &loc)?;
+            return Ok(Prop {
+                name: name(),
+                value: Value::Animation(keyframes),
+                loc,
+            });
+        }
         no_element_children(node, &loc)?;
         let value = match tag {
             "float" | "integer" | "boolean" | "string" | "rgb" => {
@@ -619,6 +633,49 @@ impl Builder {
             value,
             loc,
         })
+    }
+
+    /// The keyframes inside an `<animation>`: `<transform time="t">` elements, at least two,
+    /// times strictly increasing, each matrix a translation, rotation and scale.
+    fn animation(
+        &mut self,
+        ctx: &FileCtx,
+        node: roxmltree::Node,
+        loc: &Loc,
+    ) -> Result<Vec<(f64, DMat4)>> {
+        let mut keyframes = Vec::new();
+        let mut locs = Vec::new();
+        for child in node.children() {
+            if child.is_text() && !child.text().unwrap_or_default().trim().is_empty() {
+                return Err(ctx
+                    .loc(child, "text")
+                    .error("unexpected text inside <animation>"));
+            }
+            if !child.is_element() {
+                continue;
+            }
+            let tag = child.tag_name().name();
+            let attrs = self.attrs(ctx, child)?;
+            let child_loc = ctx.loc(child, &describe(tag, &attrs));
+            if tag != "transform" {
+                return Err(child_loc.error(format!(
+                    "unexpected <{tag}> inside <animation> (only <transform time=\"...\"> keyframes)"
+                )));
+            }
+            attrs.check(&["time"], &["time"], &child_loc)?;
+            let time = parse_float(attrs.get("time").unwrap_or_default(), &child_loc)?;
+            keyframes.push((time, self.transform(ctx, child)?));
+            locs.push(child_loc);
+        }
+        geometry::AnimatedTransform::new(&keyframes).map_err(|error| {
+            let at = match error {
+                geometry::AnimationError::TooFewKeyframes => loc,
+                geometry::AnimationError::TimesNotIncreasing { index }
+                | geometry::AnimationError::NotDecomposable { index, .. } => &locs[index],
+            };
+            at.error(error.to_string())
+        })?;
+        Ok(keyframes)
     }
 
     /// Composes the operations inside a `<transform>` in document order (`M = op * M`).
