@@ -26,7 +26,9 @@
 
 use std::path::PathBuf;
 
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use sampling::SamplerKind;
 
 /// The parsed command line.
 #[derive(Debug, Parser, PartialEq)]
@@ -73,18 +75,22 @@ pub enum IntegratorPreset {
     Auto,
 }
 
-/// Sample generators (`--sampler`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SamplerKind {
-    /// Independent uniform random numbers.
-    Independent,
-    /// Stratified (jittered) samples.
-    Stratified,
-    /// Blue-noise samples.
-    #[value(name = "bluenoise")]
-    BlueNoise,
-    /// Owen-scrambled Sobol samples (a (0, 2)-net in every 2D dimension at every power-of-two count).
-    Sobol,
+/// `--sampler`'s values: [`SamplerKind`]'s names, each with its help line, parsed by its
+/// [`FromStr`](std::str::FromStr).
+fn sampler_kind() -> impl TypedValueParser<Value = SamplerKind> {
+    let help = |kind| match kind {
+        SamplerKind::Independent => "Independent uniform random numbers",
+        SamplerKind::Stratified => "Stratified (jittered) samples",
+        SamplerKind::BlueNoise => "Blue-noise samples",
+        SamplerKind::Sobol => {
+            "Owen-scrambled Sobol samples (a (0, 2)-net in every 2D dimension at every \
+             power-of-two count)"
+        }
+    };
+    PossibleValuesParser::new(
+        SamplerKind::ALL.map(|kind| PossibleValue::new(kind.name()).help(help(kind))),
+    )
+    .map(|name| name.parse::<SamplerKind>().expect("clap checked the name"))
 }
 
 /// An on/off switch (`--rr on|off`).
@@ -126,7 +132,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = IntegratorPreset::Auto)]
     pub integrator: IntegratorPreset,
     /// Sample generator; default from the scene's sampler.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = sampler_kind())]
     pub sampler: Option<SamplerKind>,
     /// Russian roulette on or off, on top of the preset.
     #[arg(long, value_enum)]

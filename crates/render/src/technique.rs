@@ -2,9 +2,7 @@
 //! flags on top of the scene file's settings, and the `auto` choice from the scene's features.
 
 use crate::auto::{self, Trials};
-use crate::cli::{
-    Cli, Command, IntegratorPreset, RenderArgs, ReuseFlag, SamplerKind as SamplerFlag,
-};
+use crate::cli::{Cli, Command, IntegratorPreset, RenderArgs, ReuseFlag};
 use crate::driver::RenderBudget;
 use clap::Parser;
 use integrators::reference::ReferenceSettings;
@@ -12,7 +10,7 @@ use integrators::{
     DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
 };
 use sampling::sampler::SamplerKind;
-use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
+use scene::{IntegratorKind, RenderScene, SceneDesc, SceneFeatures};
 
 /// Candidates per RIS light choice in the `ris` preset and in `auto`'s trial of RIS. Measured
 /// on the many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
@@ -199,25 +197,14 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         }
     }
 
-    let scene_sampler = match desc.sampler.kind {
-        // Mitsuba's default, written into nearly every Mitsuba file: it carries no intent, so
-        // `auto` takes the sampler it measures best (Sobol, whose prefixes stay stratified under
-        // a time budget).
-        SceneSampler::Independent if is_auto => SamplerKind::Sobol,
-        SceneSampler::Independent => SamplerKind::Independent,
-        SceneSampler::Stratified | SceneSampler::Multijitter | SceneSampler::Orthogonal => {
-            SamplerKind::Stratified
-        }
-        // Mitsuba's `ldsampler` is a scrambled (0, 2)-sequence with per-dimension shuffles.
-        SceneSampler::Ldsampler => SamplerKind::Sobol,
-    };
-    let sampler = match args.sampler {
-        Some(SamplerFlag::Independent) => SamplerKind::Independent,
-        Some(SamplerFlag::Stratified) => SamplerKind::Stratified,
-        Some(SamplerFlag::BlueNoise) => SamplerKind::BlueNoise,
-        Some(SamplerFlag::Sobol) => SamplerKind::Sobol,
-        None => scene_sampler,
-    };
+    // Without a sampler on the command line, the scene's; where the scene names none (it says
+    // `independent`, Mitsuba's default, which carries no intent), `auto` takes the sampler it
+    // measures best (Sobol, whose prefixes stay stratified under a time budget).
+    let sampler = args.sampler.or(desc.sampler.kind).unwrap_or(if is_auto {
+        SamplerKind::Sobol
+    } else {
+        SamplerKind::Independent
+    });
     let seed = args.seed.map_or(desc.sampler.seed, fold_seed);
     let budget = match (args.spp, args.time) {
         (None, None) => RenderBudget::spp(desc.sampler.sample_count),

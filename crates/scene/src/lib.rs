@@ -72,7 +72,7 @@ pub use camera::{Camera, ThinLens};
 pub use desc::{
     AreaEmitterDesc, BsdfDesc, EmitterDesc, FilmDesc, FilterDesc, FovAxis, Geometry,
     IntegratorDesc, IntegratorKind, MeshDesc, MicrofacetDistribution, Roughness, SamplerDesc,
-    SamplerKind, SceneDesc, SensorDesc, ShapeDesc, SphereDesc, ThinLensDesc,
+    SceneDesc, SensorDesc, ShapeDesc, SphereDesc, ThinLensDesc,
 };
 pub use error::LoadError;
 pub use features::SceneFeatures;

@@ -6,7 +6,7 @@ use common::{close, data_dir, triangle_normal};
 use glam::{Vec2, Vec3};
 use scene::{
     BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
-    MicrofacetDistribution, Roughness, SamplerKind, SceneDesc, ShapeDesc,
+    MicrofacetDistribution, Roughness, SceneDesc, ShapeDesc,
 };
 
 /// The fixture as loaded: relative to its camera at (0, 1, 6.8).
@@ -274,7 +274,7 @@ fn render_settings() {
     assert!(!desc.integrator.hide_emitters);
     assert_eq!((desc.film.width, desc.film.height), (128, 96));
     assert_eq!(desc.film.filter, FilterDesc::Tent { radius: 1.5 });
-    assert_eq!(desc.sampler.kind, SamplerKind::Stratified);
+    assert_eq!(desc.sampler.kind, Some(sampling::SamplerKind::Stratified));
     assert_eq!(desc.sampler.sample_count, 16);
     assert_eq!(desc.sampler.seed, 7);
     assert_eq!(desc.sensor.fov_axis, FovAxis::Smaller);

@@ -4,9 +4,10 @@ mod common;
 
 use common::{close, data_dir, load, triangle_normal, wrap, write_scene};
 use glam::{Vec2, Vec3};
+use sampling::SamplerKind;
 use scene::{
     BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
-    MicrofacetDistribution, Roughness, SamplerDesc, SamplerKind, SceneDesc, SphereDesc,
+    MicrofacetDistribution, Roughness, SamplerDesc, SceneDesc, SphereDesc,
 };
 
 fn ok(name: &str, text: &str) -> SceneDesc {
@@ -46,8 +47,9 @@ fn mitsuba_defaults() {
     assert_eq!(
         desc.sampler,
         SamplerDesc {
-            kind: SamplerKind::Independent,
+            kind: None,
             sample_count: 4,
+            mitsuba_sample_count: 4,
             seed: 0
         }
     );
@@ -846,45 +848,47 @@ fn emitters() {
     assert_eq!(desc.shapes[0].emitter.unwrap().radiance, Vec3::ONE);
 }
 
+/// The sampler `plugin` with `sample_count`, as the loader reads it.
+fn sampler(plugin: &str, sample_count: u32) -> SamplerDesc {
+    ok(
+        &format!("sampler-{plugin}-{sample_count}.xml"),
+        &format!(
+            "<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\">\
+             <sampler type=\"{plugin}\"><integer name=\"sample_count\" value=\"{sample_count}\"/>\
+             </sampler></sensor></scene>"
+        ),
+    )
+    .sampler
+}
+
+#[test]
+fn mitsuba_samplers_map_to_the_nearest_strata_sampler() {
+    // `independent` is Mitsuba's default and carries no intent: no sampler is chosen.
+    assert_eq!(sampler("independent", 4).kind, None);
+    for plugin in ["stratified", "multijitter", "orthogonal"] {
+        assert_eq!(
+            sampler(plugin, 4).kind,
+            Some(SamplerKind::Stratified),
+            "{plugin}"
+        );
+    }
+    assert_eq!(sampler("ldsampler", 4).kind, Some(SamplerKind::Sobol));
+    assert_eq!(sampler("stratified", 10).sample_count, 10);
+}
+
 #[test]
 fn sampler_counts_follow_mitsuba_rounding() {
-    let sampler = |kind, sample_count| SamplerDesc {
-        kind,
-        sample_count,
-        seed: 0,
-    };
-    assert_eq!(
-        sampler(SamplerKind::Independent, 10).mitsuba_sample_count(),
-        10
-    );
-    assert_eq!(
-        sampler(SamplerKind::Stratified, 10).mitsuba_sample_count(),
-        16
-    );
-    assert_eq!(
-        sampler(SamplerKind::Stratified, 16).mitsuba_sample_count(),
-        16
-    );
-    assert_eq!(
-        sampler(SamplerKind::Multijitter, 10).mitsuba_sample_count(),
-        12
-    );
-    assert_eq!(
-        sampler(SamplerKind::Ldsampler, 10).mitsuba_sample_count(),
-        16
-    );
-    assert_eq!(
-        sampler(SamplerKind::Ldsampler, 17).mitsuba_sample_count(),
-        64
-    );
-    assert_eq!(sampler(SamplerKind::Ldsampler, 1).mitsuba_sample_count(), 4);
+    let count = |plugin, sample_count| sampler(plugin, sample_count).mitsuba_sample_count;
+    assert_eq!(count("independent", 10), 10);
+    assert_eq!(count("stratified", 10), 16);
+    assert_eq!(count("stratified", 16), 16);
+    assert_eq!(count("multijitter", 10), 12);
+    assert_eq!(count("ldsampler", 10), 16);
+    assert_eq!(count("ldsampler", 17), 64);
+    assert_eq!(count("ldsampler", 1), 4);
     // Orthogonal arrays: the square of the next prime (4 is 2², 10 rounds to 5², 26 to 7²).
     for (spp, expected) in [(4, 4), (5, 9), (9, 9), (10, 25), (26, 49)] {
-        assert_eq!(
-            sampler(SamplerKind::Orthogonal, spp).mitsuba_sample_count(),
-            expected,
-            "orthogonal {spp}"
-        );
+        assert_eq!(count("orthogonal", spp), expected, "orthogonal {spp}");
     }
 }
 

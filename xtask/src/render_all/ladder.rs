@@ -38,7 +38,7 @@ impl Configuration {
     /// (`pilot-tries-…`), since the pilot decides the rest on the scene.
     pub fn techniques(&self) -> Vec<String> {
         let mut names = self.transport.technique_names();
-        names.push(format!("sampler-{}", sampler_name(self.sampler)));
+        names.push(format!("sampler-{}", self.sampler));
         if self.adaptive {
             names.push("adaptive-sampling".to_string());
         }
@@ -55,16 +55,6 @@ impl Configuration {
                 .map(|(_, name)| format!("pilot-tries-{name}")),
         );
         names
-    }
-}
-
-/// The sampler's name as the command line's `--sampler` spells it.
-pub fn sampler_name(kind: SamplerKind) -> &'static str {
-    match kind {
-        SamplerKind::Independent => "independent",
-        SamplerKind::Stratified => "stratified",
-        SamplerKind::BlueNoise => "bluenoise",
-        SamplerKind::Sobol => "sobol",
     }
 }
 

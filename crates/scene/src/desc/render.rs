@@ -1,6 +1,7 @@
 //! Descriptions of how the scene is rendered: integrator, camera, film and sampler.
 
 use glam::{DVec3, Mat4};
+use sampling::SamplerKind;
 
 /// Which light transport algorithm the scene asks for (`<integrator type="...">`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -187,74 +188,23 @@ impl FilmDesc {
     }
 }
 
-/// The sample generator the scene names (`<sampler type="...">`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SamplerKind {
-    /// `independent`: independent uniform samples.
-    Independent,
-    /// `stratified`: jittered strata.
-    Stratified,
-    /// `multijitter`: correlated multi-jittered samples.
-    Multijitter,
-    /// `ldsampler`: a low-discrepancy (0,2)-sequence.
-    Ldsampler,
-    /// `orthogonal`: an orthogonal array (Jarosz et al. 2019), generalising multi-jittered
-    /// sampling to higher dimensions.
-    Orthogonal,
-}
-
 /// The `<sampler>` element.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SamplerDesc {
-    /// Which sampler.
-    pub kind: SamplerKind,
+    /// The Strata sampler nearest to the file's Mitsuba sampler: `stratified`, `multijitter`
+    /// and `orthogonal` are [`SamplerKind::Stratified`], `ldsampler` (a scrambled (0, 2)-sequence)
+    /// is [`SamplerKind::Sobol`]. `None` for `independent`, Mitsuba's default, which nearly every
+    /// Mitsuba file writes and which so carries no intent (also when the file has no
+    /// `<sampler>`): a renderer then uses independent samples unless it picks its own (`strata
+    /// render`'s `auto` takes Sobol).
+    pub kind: Option<SamplerKind>,
     /// Samples per pixel as written in the file (default 4); see
     /// [`SamplerDesc::mitsuba_sample_count`] for the count Mitsuba actually renders.
     pub sample_count: u32,
+    /// The samples per pixel Mitsuba renders the file's sampler with: `stratified` rounds
+    /// `sample_count` up to a square, `multijitter` to a near-square product, `ldsampler` to a
+    /// square of a power of two and `orthogonal` to the square of a prime.
+    pub mitsuba_sample_count: u64,
     /// Seed offset (default 0).
     pub seed: u32,
-}
-
-impl SamplerDesc {
-    /// The samples per pixel Mitsuba renders with: `stratified` rounds up to a square,
-    /// `multijitter` to a near-square product, `ldsampler` to a square of a power of two and
-    /// `orthogonal` to the square of a prime.
-    pub fn mitsuba_sample_count(&self) -> u64 {
-        let spp = u64::from(self.sample_count);
-        match self.kind {
-            SamplerKind::Independent => spp,
-            SamplerKind::Stratified => {
-                let mut res = 1u64;
-                while res * res < spp {
-                    res += 1;
-                }
-                res * res
-            }
-            SamplerKind::Multijitter => {
-                let rows = (spp as f64).sqrt() as u64;
-                let cols = spp.div_ceil(rows);
-                rows * cols
-            }
-            SamplerKind::Ldsampler => {
-                let mut res = 2u64;
-                while res * res < spp {
-                    res = (res + 1).next_power_of_two();
-                }
-                res * res
-            }
-            SamplerKind::Orthogonal => {
-                let is_prime = |x: u64| {
-                    x >= 2
-                        && (2..)
-                            .take_while(|d| d * d <= x)
-                            .all(|d| !x.is_multiple_of(d))
-                };
-                let mut res = 2u64;
-                while res * res < spp || !is_prime(res) {
-                    res += 1;
-                }
-                res * res
-            }
-        }
-    }
 }
