@@ -24,8 +24,8 @@ use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 
-/// The light transport of a render, built for its world.
-enum Integrator {
+/// A render's [`Transport`] built for its world (the path tracer with its light selection table).
+enum BuiltTransport {
     Reference(reference::ReferenceSettings),
     Path(PathIntegrator),
 }
@@ -377,7 +377,7 @@ fn render_sampled<T: RayTally + Default + Send>(
 
 /// The integrator a render runs and, with caustics by light tracing, its light tracer.
 struct Integrators {
-    integrator: Integrator,
+    integrator: BuiltTransport,
     light_tracer: Option<LightTracer>,
 }
 
@@ -386,7 +386,7 @@ impl Integrators {
         let world = &scene.world;
         match plan.transport {
             Transport::Reference(settings) => Self {
-                integrator: Integrator::Reference(settings),
+                integrator: BuiltTransport::Reference(settings),
                 light_tracer: None,
             },
             Transport::Path(mut settings) => {
@@ -398,7 +398,7 @@ impl Integrators {
                 // Without the tracer the path tracer must keep every path.
                 settings.light_tracing = light_tracer.is_some();
                 Self {
-                    integrator: Integrator::Path(PathIntegrator::new(world, settings)),
+                    integrator: BuiltTransport::Path(PathIntegrator::new(world, settings)),
                     light_tracer,
                 }
             }
@@ -411,8 +411,8 @@ impl Integrators {
     /// integrator, which has no tricks. A light path drawn with the same sampler gets as many.
     fn pattern_dimensions(&self, has_lens: bool) -> u32 {
         match &self.integrator {
-            Integrator::Reference(_) => u32::MAX,
-            Integrator::Path(path) => {
+            BuiltTransport::Reference(_) => u32::MAX,
+            BuiltTransport::Path(path) => {
                 1 + u32::from(has_lens) + path.sampler_dimensions(PATTERN_VERTICES)
             }
         }
@@ -541,7 +541,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             radiance
         }
     };
-    if let Integrator::Path(path) = integrator
+    if let BuiltTransport::Path(path) = integrator
         && let Some(reuse) = path.settings().path_reuse
     {
         return render_blocks(
@@ -608,10 +608,10 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             let sampler = &mut worker.sampler;
             let rays_before = costs.map(|_| worker.tally.counts());
             let radiance = match &integrator {
-                Integrator::Reference(settings) => {
+                BuiltTransport::Reference(settings) => {
                     reference::radiance(world, ray, sampler, settings, &mut worker.tally)
                 }
-                Integrator::Path(path) => {
+                BuiltTransport::Path(path) => {
                     path.radiance(world, ray, sampler, &mut worker.tally, &mut worker.slot)
                 }
             };

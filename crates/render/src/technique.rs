@@ -2,7 +2,7 @@
 //! flags on top of the scene file's settings, and the `auto` choice from the scene's features.
 
 use crate::auto::{self, Trials};
-use crate::cli::{Cli, Command, IntegratorPreset, RenderArgs, ReuseFlag};
+use crate::cli::{Cli, Command, RenderArgs, ReuseFlag};
 use crate::driver::RenderBudget;
 use clap::Parser;
 use integrators::reference::ReferenceSettings;
@@ -10,7 +10,7 @@ use integrators::{
     DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
 };
 use sampling::sampler::SamplerKind;
-use scene::{IntegratorKind, RenderScene, SceneDesc, SceneFeatures};
+use scene::{IntegratorDesc, IntegratorPreset, RenderScene, SceneDesc, SceneFeatures};
 
 /// Candidates per RIS light choice in the `ris` preset and in `auto`'s trial of RIS. Measured
 /// on the many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
@@ -26,7 +26,9 @@ pub const AUTO_ADAPTIVE_MIN_SPP: u32 = 32;
 /// laid out for this many samples, and any prefix of them is still unbiased.
 pub const TIME_BUDGET_NOMINAL_SPP: u32 = 4096;
 
-/// The light transport algorithm of a render.
+/// The light transport algorithm of a render, with every setting: what [`plan`] resolves the
+/// [`IntegratorPreset`] asked for (by `--integrator` or the scene) into, together with the
+/// scene's integrator settings, the other flags and, for `auto`, the scene's features.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Transport {
     /// The reference path tracer (no tricks).
@@ -81,23 +83,23 @@ impl RenderPlan {
     }
 }
 
-/// The sample counts of a scene's `direct` integrator, `None` for `path`.
-pub fn direct_samples(kind: IntegratorKind) -> Option<DirectSamples> {
-    match kind {
-        IntegratorKind::Direct {
-            emitter_samples,
-            bsdf_samples,
-        } => Some(DirectSamples {
-            light: emitter_samples,
-            bsdf: bsdf_samples,
-        }),
-        IntegratorKind::Path => None,
-    }
+/// The sample counts of a scene's `direct` integrator, `None` for the path tracers.
+pub fn direct_samples(integrator: &IntegratorDesc) -> Option<DirectSamples> {
+    integrator.direct.map(|direct| DirectSamples {
+        light: direct.emitter_samples,
+        bsdf: direct.bsdf_samples,
+    })
+}
+
+/// The preset a render runs: `--integrator`'s, or else the scene's.
+pub fn preset(args: &RenderArgs, desc: &SceneDesc) -> IntegratorPreset {
+    args.integrator.unwrap_or(desc.integrator.preset)
 }
 
 /// The plan for rendering `desc` (with `features`) as `args` ask.
 pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> RenderPlan {
-    let direct = direct_samples(desc.integrator.kind);
+    let preset = preset(args, desc);
+    let direct = direct_samples(&desc.integrator);
     let max_depth = match (args.max_depth, direct) {
         (Some(depth), _) => Some(depth),
         (None, Some(_)) => Some(2),
@@ -127,7 +129,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         mis: Mis::Power,
         ..nee
     };
-    let mut transport = match args.integrator {
+    let mut transport = match preset {
         IntegratorPreset::Reference => Transport::Reference(ReferenceSettings {
             max_depth,
             hide_emitters,
@@ -147,7 +149,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
     if let (Transport::Path(settings), Some(rr)) = (&mut transport, args.rr) {
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
     }
-    let is_auto = args.integrator == IntegratorPreset::Auto;
+    let is_auto = preset == IntegratorPreset::Auto;
     let mut trials = Trials::default();
     if let Transport::Path(settings) = &mut transport {
         let tracing_applies = light_tracing_applies(

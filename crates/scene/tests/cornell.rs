@@ -5,7 +5,7 @@ mod common;
 use common::{close, data_dir, triangle_normal};
 use glam::{Vec2, Vec3};
 use scene::{
-    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
+    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorPreset, MeshDesc,
     MicrofacetDistribution, Roughness, SceneDesc, ShapeDesc,
 };
 
@@ -268,7 +268,8 @@ fn flipped_disk_faces_down_with_a_mirror() {
 #[test]
 fn render_settings() {
     let desc = cornell();
-    assert_eq!(desc.integrator.kind, IntegratorKind::Path);
+    assert_eq!(desc.integrator.preset, IntegratorPreset::Auto);
+    assert_eq!(desc.integrator.direct, None);
     assert_eq!(desc.integrator.max_depth, 8);
     assert_eq!(desc.integrator.rr_depth, 3);
     assert!(!desc.integrator.hide_emitters);

@@ -6,7 +6,7 @@ use common::{close, data_dir, load, triangle_normal, wrap, write_scene};
 use glam::{Vec2, Vec3};
 use sampling::SamplerKind;
 use scene::{
-    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
+    BsdfDesc, DirectDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorPreset, MeshDesc,
     MicrofacetDistribution, Roughness, SamplerDesc, SceneDesc, SphereDesc,
 };
 
@@ -24,7 +24,8 @@ fn only_mesh(desc: &SceneDesc) -> &MeshDesc {
 #[test]
 fn mitsuba_defaults() {
     let desc = ok("defaults.xml", &wrap("<shape type=\"sphere\"/>"));
-    assert_eq!(desc.integrator.kind, IntegratorKind::Path);
+    assert_eq!(desc.integrator.preset, IntegratorPreset::Auto);
+    assert_eq!(desc.integrator.direct, None);
     assert_eq!(desc.integrator.max_depth, -1);
     assert_eq!(desc.integrator.rr_depth, 5);
     assert!(!desc.integrator.hide_emitters);
@@ -635,11 +636,13 @@ fn direct_sample_counts() {
             ),
         )
         .integrator
-        .kind
+        .direct
     };
-    let direct = |emitter_samples, bsdf_samples| IntegratorKind::Direct {
-        emitter_samples,
-        bsdf_samples,
+    let direct = |emitter_samples, bsdf_samples| {
+        Some(DirectDesc {
+            emitter_samples,
+            bsdf_samples,
+        })
     };
     assert_eq!(kind(""), direct(1, 1));
     assert_eq!(
@@ -773,12 +776,13 @@ fn thin_lens_and_focal_length() {
 </scene>",
     );
     assert_eq!(
-        desc.integrator.kind,
-        IntegratorKind::Direct {
+        desc.integrator.direct,
+        Some(DirectDesc {
             emitter_samples: 1,
             bsdf_samples: 1
-        }
+        })
     );
+    assert_eq!(desc.integrator.preset, IntegratorPreset::Auto);
     assert_eq!(desc.integrator.max_depth, 2);
     assert!(desc.integrator.hide_emitters);
     let lens = desc.sensor.lens.unwrap();
@@ -1003,7 +1007,8 @@ fn volumetric_path_tracers_are_the_path_tracer() {
             ),
         );
         let desc = ok(&format!("{plugin}.xml"), &text);
-        assert_eq!(desc.integrator.kind, IntegratorKind::Path, "{plugin}");
+        assert_eq!(desc.integrator.preset, IntegratorPreset::Auto, "{plugin}");
+        assert_eq!(desc.integrator.direct, None, "{plugin}");
         assert_eq!(
             (
                 desc.integrator.max_depth,
@@ -1028,6 +1033,68 @@ fn volumetric_path_tracers_are_the_path_tracer() {
     }
     let path = ok("path.xml", &wrap(""));
     assert!(!path.integrator.skip_null_vertices);
+}
+
+/// Strata's presets by name in `<integrator type>`, parsed as the command line parses them, with
+/// `path`'s parameters; an unknown type is an error naming the element, its line and every
+/// supported type.
+#[test]
+fn strata_presets_are_integrator_types() {
+    for preset in IntegratorPreset::ALL {
+        let text = wrap("").replace(
+            "<integrator type=\"path\"/>",
+            &format!(
+                "<integrator type=\"{preset}\"><integer name=\"max_depth\" value=\"4\"/><integer name=\"rr_depth\" value=\"2\"/></integrator>"
+            ),
+        );
+        let desc = ok(&format!("preset-{preset}.xml"), &text);
+        assert_eq!(desc.integrator.preset, preset);
+        assert_eq!(
+            (
+                desc.integrator.direct,
+                desc.integrator.max_depth,
+                desc.integrator.rr_depth,
+                desc.integrator.hide_emitters,
+                desc.integrator.skip_null_vertices
+            ),
+            (None, 4, 2, false, false),
+            "{preset}"
+        );
+    }
+    let text = wrap("").replace("<integrator type=\"path\"/>", "<integrator type=\"bdpt\"/>");
+    let err = load("bdpt.xml", &text).unwrap_err();
+    assert_eq!(err.line, 2, "{err}");
+    let message = err.to_string();
+    for name in [
+        "bdpt",
+        "<integrator",
+        "path",
+        "direct",
+        "reference",
+        "nee",
+        "mis",
+        "ris",
+        "auto",
+    ] {
+        assert!(message.contains(name), "{name}: {message}");
+    }
+}
+
+#[test]
+fn preset_names_parse_and_print() {
+    for preset in IntegratorPreset::ALL {
+        assert_eq!(preset.to_string().parse::<IntegratorPreset>(), Ok(preset));
+    }
+    assert_eq!(
+        "path".parse::<IntegratorPreset>(),
+        Ok(IntegratorPreset::Auto)
+    );
+    assert_eq!(IntegratorPreset::default(), IntegratorPreset::Auto);
+    let err = "direct".parse::<IntegratorPreset>().unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "no integrator called 'direct' (expected reference, nee, mis, ris, auto or path)"
+    );
 }
 
 #[test]
@@ -1343,11 +1410,11 @@ fn moment_integrator_reads_its_nested_integrator() {
     );
     let desc = ok("moment.xml", &text);
     assert!(matches!(
-        desc.integrator.kind,
-        IntegratorKind::Direct {
+        desc.integrator.direct,
+        Some(DirectDesc {
             emitter_samples: 3,
             ..
-        }
+        })
     ));
     let empty = wrap("").replace(
         "<integrator type=\"path\"/>",
