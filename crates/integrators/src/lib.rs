@@ -22,7 +22,9 @@ pub use counters::{RayCounters, RayTally};
 pub use light_tracer::{CameraConnection, LightTracer};
 pub use path::PathIntegrator;
 pub use ray_log::{RayLog, ShadowRay};
-pub use settings::{
-    DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
-};
+pub use settings::{DirectSamples, Mis, PathReuse, PathSettings, RussianRoulette};
+
+/// How [`PathSettings::light_selection`] chooses a light (defined in `lights`, re-exported here
+/// with the settings it is one of).
+pub use lights::LightSelection;
 pub use world::{BsdfSlot, Checkerboard, MaterialId, MaterialTexture, SurfaceHit, World};

@@ -6,9 +6,7 @@ use crate::cli::{Cli, Command, RenderArgs, ReuseFlag};
 use crate::driver::RenderBudget;
 use clap::Parser;
 use integrators::reference::ReferenceSettings;
-use integrators::{
-    DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
-};
+use integrators::{DirectSamples, LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
 use sampling::sampler::SamplerKind;
 use scene::{IntegratorDesc, IntegratorPreset, RenderScene, SceneDesc, SceneFeatures};
 
@@ -118,7 +116,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         sample_lights: true,
         sample_bsdf: true,
         mis: Mis::Off,
-        light_selection: LightSelectionMode::Power,
+        light_selection: LightSelection::Power,
         russian_roulette: roulette,
         light_tracing: false,
         direct_samples,
@@ -139,7 +137,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         IntegratorPreset::Nee => Transport::Path(nee),
         IntegratorPreset::Mis => Transport::Path(mis),
         IntegratorPreset::Ris => Transport::Path(PathSettings {
-            light_selection: LightSelectionMode::Ris {
+            light_selection: LightSelection::Ris {
                 candidates: RIS_CANDIDATES,
             },
             ..mis
@@ -264,8 +262,8 @@ pub fn plan_from_flags(scene: &RenderScene, flags: &[&str]) -> Result<RenderPlan
 pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSettings {
     let sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
     let light_selection = match features.light_count {
-        0 | 1 => LightSelectionMode::Uniform,
-        _ => LightSelectionMode::Power,
+        0 | 1 => LightSelection::Uniform,
+        _ => LightSelection::Power,
     };
     PathSettings {
         sample_lights,
@@ -336,12 +334,12 @@ mod tests {
     fn auto_base_picks_one_light_uniformly_and_several_by_power() {
         assert_eq!(
             base(&features(1, 1, false)).light_selection,
-            LightSelectionMode::Uniform
+            LightSelection::Uniform
         );
         // Veach's scene: four spheres and the environment. RIS is a trial, not the base.
         assert_eq!(
             base(&features(5, 4, true)).light_selection,
-            LightSelectionMode::Power
+            LightSelection::Power
         );
     }
 

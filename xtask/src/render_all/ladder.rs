@@ -2,9 +2,7 @@
 //! rung, plus `auto`; rungs that cannot apply to the scene are left out.
 
 use integrators::reference::ReferenceSettings;
-use integrators::{
-    DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
-};
+use integrators::{DirectSamples, LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
 use render::auto::{REUSE_BLOCK, Trials};
 use render::technique::{RIS_CANDIDATES, RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
@@ -87,7 +85,7 @@ impl SceneTransport {
             sample_lights: true,
             sample_bsdf: true,
             mis: Mis::Power,
-            light_selection: LightSelectionMode::Power,
+            light_selection: LightSelection::Power,
             russian_roulette: None,
             light_tracing: false,
             direct_samples: self.direct_samples,
@@ -181,8 +179,8 @@ pub fn ladder(
         .any(|c| c.name == best_name)
         .then_some(best_name);
     if can_sample_lights && features.light_count > 1 {
-        let uniform = LightSelectionMode::Uniform;
-        let ris = LightSelectionMode::Ris {
+        let uniform = LightSelection::Uniform;
+        let ris = LightSelection::Ris {
             candidates: RIS_CANDIDATES,
         };
         for (name, light_selection) in [("uniform-lights", uniform), ("ris-lights", ris)] {
