@@ -229,8 +229,8 @@ fn veach_regions(subject: &Subject) -> Vec<Option<(usize, usize)>> {
         .map(|(i, _)| i as u32)
         .collect();
     let (width, height) = (scene.desc.film.width, scene.desc.film.height);
-    let mut counters = integrators::RayCounters::default();
-    let mut slot = integrators::BsdfSlot::default();
+    let mut counters = world::RayCounters::default();
+    let mut slot = world::BsdfSlot::default();
     (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| {

@@ -1,11 +1,11 @@
 //! Choosing a light and a point on it for next event estimation: by a fixed probability mass
 //! function (uniform or power), or by resampled importance sampling over several candidates.
 
-use crate::SurfaceHit;
 use glam::{Vec2, Vec3};
 use lights::{Light, LightSample, LightSelection, LightSelector};
 use materials::Bsdf;
 use sampling::reservoir::Reservoir;
+use world::SurfaceHit;
 
 /// The lobe weight (sr⁻¹) of the environment in [`selection_target`]: 1/π, with which a white
 /// surface turns the irradiance E of an environment around it into reflected radiance E/π; a

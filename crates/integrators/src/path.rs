@@ -22,14 +22,13 @@ use crate::path_reuse::{FirstVertex, ReusablePath, SecondVertex};
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use crate::settings::{DirectSamples, Mis, PathSettings};
 use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf};
-use crate::world::shadow_ray;
-use crate::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World};
 use geometry::{Ray, SpawnPoint};
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
 use materials::Bsdf;
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
+use world::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World, shadow_ray};
 
 /// How many samples of each strategy are combined at a vertex, for the MIS weights.
 #[derive(Clone, Copy, Debug)]

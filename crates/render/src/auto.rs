@@ -43,7 +43,8 @@
 
 use crate::image::Image;
 use crate::metrics::RELMSE_EPSILON;
-use integrators::{LightSelection, PathReuse, PathSettings, RayCounters};
+use integrators::{LightSelection, PathReuse, PathSettings};
+use world::RayCounters;
 
 /// Pixels of the pilot's thumbnail, about: the image is scaled down by a whole factor until it
 /// has at most this many.

@@ -12,9 +12,7 @@ use crate::image::Image;
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
 use integrators::path_reuse::{self, ReusablePath};
-use integrators::{
-    BsdfSlot, LightTracer, PathIntegrator, RayCounters, RayLog, RayTally, reference,
-};
+use integrators::{LightTracer, PathIntegrator, reference};
 use sampling::Sampler;
 use sampling::sampler::{
     BlueNoiseSampler, IndependentSampler, PrefixSampler, SamplerKind, SobolSampler,
@@ -23,6 +21,7 @@ use sampling::sampler::{
 use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
+use world::{BsdfSlot, RayCounters, RayLog, RayTally};
 
 /// A render's [`Transport`] built for its world (the path tracer with its light selection table).
 enum BuiltTransport {
