@@ -16,7 +16,7 @@
 //! Each error is the mean over several seeds, each time the median; the machine should be quiet.
 
 use integrators::reference::ReferenceSettings;
-use integrators::{LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette};
+use integrators::{LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
 use render::auto::REUSE_BLOCK;
 use render::driver::RenderOptions;
 use render::image::Image;
@@ -121,7 +121,7 @@ impl Subject {
             sample_lights: true,
             sample_bsdf: true,
             mis: Mis::Power,
-            light_selection: LightSelectionMode::Power,
+            light_selection: LightSelection::Power,
             russian_roulette: None,
             light_tracing: false,
             direct_samples: None,
@@ -229,8 +229,8 @@ fn veach_regions(subject: &Subject) -> Vec<Option<(usize, usize)>> {
         .map(|(i, _)| i as u32)
         .collect();
     let (width, height) = (scene.desc.film.width, scene.desc.film.height);
-    let mut counters = integrators::RayCounters::default();
-    let mut slot = integrators::BsdfSlot::default();
+    let mut counters = world::RayCounters::default();
+    let mut slot = world::BsdfSlot::default();
     (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| {
@@ -412,9 +412,9 @@ fn light_selection_on_many_lights(root: &Path) -> Result<Vec<Claim>, String> {
         )
     };
     let (uniform, power, ris) = (
-        plan(LightSelectionMode::Uniform),
-        plan(LightSelectionMode::Power),
-        plan(LightSelectionMode::Ris {
+        plan(LightSelection::Uniform),
+        plan(LightSelection::Power),
+        plan(LightSelection::Ris {
             candidates: RIS_CANDIDATES,
         }),
     );
@@ -548,7 +548,7 @@ fn glossy_light_choice_on_veach(root: &Path) -> Result<Claim, String> {
     let spp = 128;
     let power = subject.mis_with_roulette();
     let ris = PathSettings {
-        light_selection: LightSelectionMode::Ris {
+        light_selection: LightSelection::Ris {
             candidates: RIS_CANDIDATES,
         },
         ..power

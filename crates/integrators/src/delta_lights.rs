@@ -1,9 +1,9 @@
 //! Connecting a shading point to every delta light: the only unbiased way to see point, spot and
 //! directional lights without light selection, since no sampled direction can hit them.
 
-use crate::{RayTally, SurfaceHit, World};
 use geometry::SpawnPoint;
 use glam::{Vec2, Vec3};
+use world::{RayTally, SurfaceHit, World};
 
 /// Light from every delta light at `surface` (whose point is `point`), each by its one shadow
 /// ray. Without light sampling this is the only way to see a point light: no sampled direction

@@ -1,9 +1,7 @@
-//! Light transport over a [`World`]: the reference path tracer (the oracle every other
+//! Light transport over a [`World`](world::World): the reference path tracer (the oracle every other
 //! configuration is tested against) and the path tracer with every variance-reduction technique
 //! as a switch.
 
-mod camera_ray;
-mod counters;
 mod delta_lights;
 mod light_choice;
 mod light_tracer;
@@ -11,18 +9,14 @@ mod next_direction;
 mod optional_draw;
 pub mod path;
 pub mod path_reuse;
-mod ray_log;
 pub mod reference;
 mod settings;
 mod uniform_direction;
-mod world;
 
-pub use camera_ray::CameraRay;
-pub use counters::{RayCounters, RayTally};
-pub use light_tracer::{CameraConnection, LightTracer};
+pub use light_tracer::LightTracer;
 pub use path::PathIntegrator;
-pub use ray_log::{RayLog, ShadowRay};
-pub use settings::{
-    DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
-};
-pub use world::{BsdfSlot, Checkerboard, MaterialId, MaterialTexture, SurfaceHit, World};
+pub use settings::{DirectSamples, Mis, PathReuse, PathSettings, RussianRoulette};
+
+/// How [`PathSettings::light_selection`] chooses a light (defined in `lights`, re-exported here
+/// with the settings it is one of).
+pub use lights::LightSelection;

@@ -1,12 +1,11 @@
 //! Choosing a light and a point on it for next event estimation: by a fixed probability mass
 //! function (uniform or power), or by resampled importance sampling over several candidates.
 
-use crate::SurfaceHit;
-use crate::settings::LightSelectionMode;
 use glam::{Vec2, Vec3};
-use lights::{Light, LightSample, LightSelector};
+use lights::{Light, LightSample, LightSelection, LightSelector};
 use materials::Bsdf;
 use sampling::reservoir::Reservoir;
+use world::SurfaceHit;
 
 /// The lobe weight (sr⁻¹) of the environment in [`selection_target`]: 1/π, with which a white
 /// surface turns the irradiance E of an environment around it into reflected radiance E/π; a
@@ -38,7 +37,7 @@ pub(crate) struct ChosenLight {
 /// choice) and `u_point` come from the sampler, each from its own dimension.
 #[inline(always)]
 pub(crate) fn choose_light(
-    mode: LightSelectionMode,
+    mode: LightSelection,
     selector: &LightSelector,
     lights: &[Light],
     surface: &SurfaceHit<'_>,
@@ -47,7 +46,7 @@ pub(crate) fn choose_light(
     u_point: Vec2,
 ) -> Option<ChosenLight> {
     match mode {
-        LightSelectionMode::Uniform | LightSelectionMode::Power => {
+        LightSelection::Uniform | LightSelection::Power => {
             let (index, pmf) = selector.select(u_choice.x);
             let candidate = evaluate(&lights[index], pmf, surface, wo, u_point)?;
             let pdf = pmf * candidate.sample.pdf_solid_angle;
@@ -57,7 +56,7 @@ pub(crate) fn choose_light(
                 ..candidate
             })
         }
-        LightSelectionMode::Ris { candidates } => {
+        LightSelection::Ris { candidates } => {
             resample(candidates, selector, lights, surface, wo, u_choice, u_point)
         }
     }

@@ -24,28 +24,13 @@
 //! and roulette (1D, with roulette from its start depth on).
 
 use crate::optional_draw::next_1d_if;
-use crate::{BsdfSlot, PathSettings, RayTally, RussianRoulette, SurfaceHit, World};
+use crate::{PathSettings, RussianRoulette};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use lights::Light;
 use sampling::Sampler;
 use sampling::distribution::CdfTable;
-
-/// Where a surface point appears to the camera (through one point of its aperture), and what a
-/// path reaching it is worth there.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CameraConnection {
-    /// The film position the point projects to, in pixels ((0, 0) is the top-left corner).
-    pub film: Vec2,
-    /// Where the connecting shadow ray ends: the point of the camera's near plane on the line to
-    /// the camera (world space), so that what the camera's rays cannot see does not block it.
-    pub target: Vec3,
-    /// The camera's importance W_e times |cos θ| at the camera over the squared distance, in
-    /// units that make `weight · f · cos · importance` the point's contribution to one pixel
-    /// sample: 1 / (A cos³θ r²), with A the area of the image plane at unit distance, r the
-    /// distance to the aperture point and θ the angle off the view axis there.
-    pub importance: f32,
-}
+use world::{BsdfSlot, CameraConnection, RayTally, SurfaceHit, World};
 
 /// Traces light paths for caustics (see the module documentation).
 #[derive(Clone, Debug)]

@@ -20,16 +20,15 @@ use crate::next_direction::NextDirection;
 use crate::optional_draw::next_1d_if;
 use crate::path_reuse::{FirstVertex, ReusablePath, SecondVertex};
 use crate::reference::UNBOUNDED_DEPTH_CAP;
-use crate::settings::{DirectSamples, LightSelectionMode, Mis, PathSettings};
+use crate::settings::{DirectSamples, Mis, PathSettings};
 use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf};
-use crate::world::shadow_ray;
-use crate::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World};
 use geometry::{Ray, SpawnPoint};
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
 use materials::Bsdf;
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
+use world::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World, shadow_ray};
 
 /// How many samples of each strategy are combined at a vertex, for the MIS weights.
 #[derive(Clone, Copy, Debug)]
@@ -98,16 +97,16 @@ impl ShadowedLight {
 impl PathIntegrator {
     /// The integrator for `world` with `settings`.
     pub fn new(world: &World, settings: PathSettings) -> Self {
-        let selection = match settings.light_selection {
-            LightSelectionMode::Uniform => LightSelection::Uniform,
-            LightSelectionMode::Power | LightSelectionMode::Ris { .. } => LightSelection::Power,
-        };
         Self {
             settings,
-            selector: LightSelector::new(world.lights(), world.light_weights(), selection),
+            selector: LightSelector::new(
+                world.lights(),
+                world.light_weights(),
+                settings.light_selection,
+            ),
             draws_light_choice: world.lights().len() > 1,
             draws_reservoir_choice: world.lights().len() > 1
-                && matches!(settings.light_selection, LightSelectionMode::Ris { .. }),
+                && matches!(settings.light_selection, LightSelection::Ris { .. }),
             draws_lobe_choice: world.has_lobe_choice(),
         }
     }

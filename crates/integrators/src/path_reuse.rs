@@ -26,10 +26,10 @@
 //! block (each pixel's own error is what shrinks), which shows as blocky noise at low sample
 //! counts.
 
-use crate::{RayTally, SurfaceHit, World};
 use geometry::SpawnPoint;
 use glam::{Vec3, Vec4};
 use materials::Bsdf;
+use world::{RayTally, SurfaceHit, World};
 
 mod lanes;
 
@@ -174,11 +174,11 @@ pub fn combine(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::RayCounters;
     use geometry::{Accel, Ray, Shape, Sphere};
     use glam::Mat3;
     use materials::Diffuse;
     use std::f32::consts::FRAC_1_PI;
+    use world::RayCounters;
 
     const ALBEDO: Vec3 = Vec3::new(0.8, 0.5, 0.2);
     const REFLECTED: Vec3 = Vec3::new(2.0, 3.0, 4.0);

@@ -9,10 +9,10 @@
 use crate::delta_lights::delta_lights;
 use crate::settings::DirectSamples;
 use crate::uniform_direction::sample_without_importance;
-use crate::{BsdfSlot, CameraRay, RayTally, World};
 use geometry::SpawnPoint;
 use glam::Vec3;
 use sampling::Sampler;
+use world::{BsdfSlot, CameraRay, RayTally, World};
 
 /// Paths with an unbounded `max_depth` stop after this many vertices: the reference has no
 /// roulette, and the energy left after this many bounces is far below any test's noise.

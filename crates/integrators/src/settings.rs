@@ -1,5 +1,7 @@
 //! The switches of the variance-reduction path tracer, one struct with affirmative names.
 
+use lights::LightSelection;
+
 /// How light-sampled and BSDF-sampled estimates of the same light are combined.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mis {
@@ -10,23 +12,6 @@ pub enum Mis {
     Balance,
     /// Veach's power heuristic with exponent 2.
     Power,
-}
-
-/// How the light for a next-event-estimation sample is chosen.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LightSelectionMode {
-    /// Every light equally likely.
-    Uniform,
-    /// Proportional to emitted power.
-    Power,
-    /// Resampled importance sampling: `candidates` lights are drawn power-proportionally, one
-    /// is kept with probability proportional to the irradiance it could deliver at the shading
-    /// point (a weighted reservoir), weighted by the unbiased contribution weight, and a point
-    /// is sampled on it.
-    Ris {
-        /// Number of candidates M (at least 1).
-        candidates: u32,
-    },
 }
 
 /// Russian roulette on the indirect part of the path: after each sampled bounce from
@@ -76,7 +61,7 @@ pub struct PathSettings {
     /// Combination of light and BSDF samples (only meaningful with `sample_lights`).
     pub mis: Mis,
     /// How a light is chosen for next event estimation.
-    pub light_selection: LightSelectionMode,
+    pub light_selection: LightSelection,
     /// Russian roulette, `None` for off.
     pub russian_roulette: Option<RussianRoulette>,
     /// Caustics by light tracing: paths whose first vertex after the camera is non-delta and
@@ -123,7 +108,7 @@ impl Default for PathSettings {
             sample_lights: false,
             sample_bsdf: true,
             mis: Mis::Off,
-            light_selection: LightSelectionMode::Power,
+            light_selection: LightSelection::Power,
             russian_roulette: None,
             light_tracing: false,
             direct_samples: None,
@@ -162,9 +147,9 @@ impl PathSettings {
         if self.sample_lights {
             names.push("nee".to_string());
             names.push(match self.light_selection {
-                LightSelectionMode::Uniform => "light-selection-uniform".to_string(),
-                LightSelectionMode::Power => "light-selection-power".to_string(),
-                LightSelectionMode::Ris { candidates } => {
+                LightSelection::Uniform => "light-selection-uniform".to_string(),
+                LightSelection::Power => "light-selection-power".to_string(),
+                LightSelection::Ris { candidates } => {
                     format!("light-selection-ris-{candidates}")
                 }
             });

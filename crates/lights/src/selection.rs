@@ -3,13 +3,22 @@
 use crate::Light;
 use sampling::distribution::AliasTable;
 
-/// How a light is chosen for a shadow ray.
+/// How the light for a next-event-estimation sample (a shadow ray) is chosen: by a fixed
+/// probability mass function ([`LightSelector`]), or by resampling candidates drawn from one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LightSelection {
-    /// Every light with equal probability.
+    /// Every light equally likely.
     Uniform,
-    /// Proportional to each light's emitted power.
+    /// Proportional to emitted power.
     Power,
+    /// Resampled importance sampling: `candidates` lights are drawn power-proportionally (by the
+    /// [`LightSelector`] of `Power`), one is kept with probability proportional to the
+    /// irradiance it could deliver at the shading point (a weighted reservoir), weighted by the
+    /// unbiased contribution weight, and a point is sampled on it.
+    Ris {
+        /// Number of candidates M (at least 1).
+        candidates: u32,
+    },
 }
 
 /// Picks lights with a fixed probability mass function over a scene's lights.
@@ -28,7 +37,8 @@ pub enum LightSelector {
 impl LightSelector {
     /// A selector over `lights` with selection weights `weights` (parallel to `lights`,
     /// positive; Mitsuba's `sampling_weight`): each light is chosen with probability
-    /// proportional to its weight (`Uniform`) or to its power times its weight (`Power`). Falls
+    /// proportional to its weight (`Uniform`) or to its power times its weight (`Power`, and
+    /// `Ris`, whose candidates come from this selector). Falls
     /// back to the weights alone when no light has positive finite power, and to uniform when
     /// they are all equal. `None` when there are no lights.
     pub fn new(lights: &[Light], weights: &[f32], selection: LightSelection) -> Option<Self> {
@@ -50,7 +60,7 @@ impl LightSelector {
         };
         Some(match selection {
             LightSelection::Uniform => by_weight(),
-            LightSelection::Power => {
+            LightSelection::Power | LightSelection::Ris { .. } => {
                 let powers: Vec<f32> = lights
                     .iter()
                     .zip(weights)

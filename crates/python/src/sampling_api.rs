@@ -258,19 +258,9 @@ fn warp_invert<'py>(
     PyArray1::from_vec(py, values).reshape([points.len(), 2])
 }
 
-/// The sampler kind called `name`.
+/// The sampler kind called `name` (as `strata render --sampler` names it).
 fn sampler_kind(name: &str) -> PyResult<SamplerKind> {
-    Ok(match name {
-        "independent" => SamplerKind::Independent,
-        "stratified" => SamplerKind::Stratified,
-        "bluenoise" => SamplerKind::BlueNoise,
-        "sobol" => SamplerKind::Sobol,
-        other => {
-            return Err(value_error(format!(
-                "no sampler called '{other}' (independent, stratified, bluenoise, sobol)"
-            )));
-        }
-    })
+    name.parse().map_err(|e: sampling::UnknownSamplerKind| value_error(e.to_string()))
 }
 
 /// The first `dimensions` numbers of each of the `spp` samples of pixel `(x, y)` that sampler

@@ -20,7 +20,7 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::UVec2;
-use integrators::RayCounters;
+use world::RayCounters;
 
 use crate::budget::RenderBudget;
 use crate::film::Film;

@@ -43,7 +43,8 @@
 
 use crate::image::Image;
 use crate::metrics::RELMSE_EPSILON;
-use integrators::{LightSelectionMode, PathReuse, PathSettings, RayCounters};
+use integrators::{LightSelection, PathReuse, PathSettings};
+use world::RayCounters;
 
 /// Pixels of the pilot's thumbnail, about: the image is scaled down by a whole factor until it
 /// has at most this many.
@@ -160,13 +161,13 @@ impl Switch {
     fn apply(self, settings: PathSettings) -> PathSettings {
         match self {
             Switch::Ris => PathSettings {
-                light_selection: LightSelectionMode::Ris {
+                light_selection: LightSelection::Ris {
                     candidates: RIS_CANDIDATES,
                 },
                 ..settings
             },
             Switch::UniformLights => PathSettings {
-                light_selection: LightSelectionMode::Uniform,
+                light_selection: LightSelection::Uniform,
                 ..settings
             },
             Switch::NoRoulette => PathSettings {
@@ -508,7 +509,7 @@ fn measure(
         0.0
     };
     let ris_candidates = match settings.light_selection {
-        LightSelectionMode::Ris { candidates } => f64::from(candidates),
+        LightSelection::Ris { candidates } => f64::from(candidates),
         _ => 0.0,
     };
     let rays = pilot.rays;
@@ -588,7 +589,7 @@ mod tests {
         .unwrap();
         assert_eq!(choice.label, "+path-reuse");
         assert!(choice.settings.path_reuse.is_some());
-        assert_eq!(choice.settings.light_selection, LightSelectionMode::Power);
+        assert_eq!(choice.settings.light_selection, LightSelection::Power);
         let gain = choice.measured[2].efficiency() / choice.measured[0].efficiency();
         assert!((gain - 2.0).abs() < 0.5, "efficiency gain {gain}");
     }
@@ -626,7 +627,7 @@ mod tests {
         for seed in 0..100 {
             let choice = choose(base(), &trials, SIZE, |s| {
                 let which = u32::from(s.russian_roulette.is_none())
-                    + 2 * u32::from(s.light_selection != LightSelectionMode::Power);
+                    + 2 * u32::from(s.light_selection != LightSelection::Power);
                 Ok::<_, ()>(renders(0.1, 100, seed * 4 + which + 1))
             })
             .unwrap();
@@ -652,7 +653,7 @@ mod tests {
         let choice = choose(base(), &trials, SIZE, |s| {
             calls += 1;
             let better = u32::from(s.russian_roulette.is_none())
-                + u32::from(s.light_selection != LightSelectionMode::Power);
+                + u32::from(s.light_selection != LightSelection::Power);
             Ok::<_, ()>(renders(0.1 / 2f32.powi(better as i32), 100, calls))
         })
         .unwrap();
@@ -701,14 +702,14 @@ mod tests {
         };
         let choice = choose(base(), &trials, SIZE, |s| {
             Ok::<_, ()>(match s.light_selection {
-                LightSelectionMode::Power => renders(0.1, 100, 1),
-                LightSelectionMode::Ris { .. } => renders(0.05, 100, 2),
-                LightSelectionMode::Uniform => renders(0.03, 100, 3),
+                LightSelection::Power => renders(0.1, 100, 1),
+                LightSelection::Ris { .. } => renders(0.05, 100, 2),
+                LightSelection::Uniform => renders(0.03, 100, 3),
             })
         })
         .unwrap();
         assert_eq!(choice.label, "+uniform-lights");
-        assert_eq!(choice.settings.light_selection, LightSelectionMode::Uniform);
+        assert_eq!(choice.settings.light_selection, LightSelection::Uniform);
         assert_eq!(
             choice.measured.len(),
             3,

@@ -26,7 +26,10 @@
 
 use std::path::PathBuf;
 
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use sampling::SamplerKind;
+use scene::IntegratorPreset;
 
 /// The parsed command line.
 #[derive(Debug, Parser, PartialEq)]
@@ -54,37 +57,56 @@ pub enum Command {
     Merge(MergeArgs),
 }
 
-/// Integrator presets (`--integrator`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum IntegratorPreset {
-    /// No tricks: uniform direction sampling, emission counted on hit (the oracle).
-    Reference,
-    /// BSDF sampling plus next event estimation with power-proportional light selection and
-    /// Russian roulette, no MIS.
-    Nee,
-    /// `nee` plus MIS (power heuristic) between light and BSDF samples.
-    Mis,
-    /// `mis` with RIS light selection.
-    Ris,
-    /// The best of these for the scene, leaving out what it does not need, with caustics by
-    /// light tracing where they apply (see --light-tracing). Also called `path`, Mitsuba's name
-    /// for its integrator.
-    #[value(alias = "path")]
-    Auto,
+/// `--integrator`'s values: [`IntegratorPreset`]'s names (and its aliases, which the help does
+/// not list), each with its help line, parsed by its [`FromStr`](std::str::FromStr).
+fn integrator_preset() -> impl TypedValueParser<Value = IntegratorPreset> {
+    let help = |preset| match preset {
+        IntegratorPreset::Reference => {
+            "No tricks: uniform direction sampling, emission counted on hit (the oracle)"
+        }
+        IntegratorPreset::Nee => {
+            "BSDF sampling plus next event estimation with power-proportional light selection \
+             and Russian roulette, no MIS"
+        }
+        IntegratorPreset::Mis => "`nee` plus MIS (power heuristic) between light and BSDF samples",
+        IntegratorPreset::Ris => "`mis` with RIS light selection",
+        IntegratorPreset::Auto => {
+            "The best of these for the scene, leaving out what it does not need, with caustics \
+             by light tracing where they apply (see --light-tracing). Also called `path`, \
+             Mitsuba's name for its integrator"
+        }
+    };
+    PossibleValuesParser::new(IntegratorPreset::ALL.map(|preset| {
+        let aliases = IntegratorPreset::ALIASES
+            .into_iter()
+            .filter(move |&(_, named)| named == preset)
+            .map(|(alias, _)| alias);
+        PossibleValue::new(preset.name())
+            .help(help(preset))
+            .aliases(aliases)
+    }))
+    .map(|name| {
+        name.parse::<IntegratorPreset>()
+            .expect("clap checked the name")
+    })
 }
 
-/// Sample generators (`--sampler`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SamplerKind {
-    /// Independent uniform random numbers.
-    Independent,
-    /// Stratified (jittered) samples.
-    Stratified,
-    /// Blue-noise samples.
-    #[value(name = "bluenoise")]
-    BlueNoise,
-    /// Owen-scrambled Sobol samples (a (0, 2)-net in every 2D dimension at every power-of-two count).
-    Sobol,
+/// `--sampler`'s values: [`SamplerKind`]'s names, each with its help line, parsed by its
+/// [`FromStr`](std::str::FromStr).
+fn sampler_kind() -> impl TypedValueParser<Value = SamplerKind> {
+    let help = |kind| match kind {
+        SamplerKind::Independent => "Independent uniform random numbers",
+        SamplerKind::Stratified => "Stratified (jittered) samples",
+        SamplerKind::BlueNoise => "Blue-noise samples",
+        SamplerKind::Sobol => {
+            "Owen-scrambled Sobol samples (a (0, 2)-net in every 2D dimension at every \
+             power-of-two count)"
+        }
+    };
+    PossibleValuesParser::new(
+        SamplerKind::ALL.map(|kind| PossibleValue::new(kind.name()).help(help(kind))),
+    )
+    .map(|name| name.parse::<SamplerKind>().expect("clap checked the name"))
 }
 
 /// An on/off switch (`--rr on|off`).
@@ -122,11 +144,12 @@ pub struct RenderArgs {
     /// (exit status 130); a second Ctrl-C quits at once without writing.
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
     pub time: Option<f64>,
-    /// Integrator preset.
-    #[arg(long, value_enum, default_value_t = IntegratorPreset::Auto)]
-    pub integrator: IntegratorPreset,
+    /// Integrator preset [default: the scene's `<integrator type>` where it names a preset,
+    /// else auto]
+    #[arg(long, value_parser = integrator_preset())]
+    pub integrator: Option<IntegratorPreset>,
     /// Sample generator; default from the scene's sampler.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = sampler_kind())]
     pub sampler: Option<SamplerKind>,
     /// Russian roulette on or off, on top of the preset.
     #[arg(long, value_enum)]
@@ -392,7 +415,7 @@ mod tests {
         assert!(r.adaptive == Some(Switch::On) && r.light_tracing);
         assert_eq!(r.out.as_deref(), Some(Path::new("o.exr")));
         assert_eq!((r.spp, r.time), (Some(64), Some(0.5)));
-        assert_eq!(r.integrator, IntegratorPreset::Mis);
+        assert_eq!(r.integrator, Some(IntegratorPreset::Mis));
         assert_eq!(r.sampler, Some(SamplerKind::BlueNoise));
         assert_eq!(r.rr, Some(Switch::Off));
         assert!(!Switch::Off.is_on() && Switch::On.is_on());
@@ -408,7 +431,7 @@ mod tests {
     #[test]
     fn defaults_leave_the_scene_in_charge() {
         let r = render_args(&["render", "s.xml", "--out", "o.exr"]);
-        assert_eq!(r.integrator, IntegratorPreset::Auto);
+        assert_eq!(r.integrator, None);
         assert_eq!(
             (r.spp, r.time, r.sampler, r.rr, r.max_depth, r.seed),
             (None, None, None, None, None, None)
@@ -455,11 +478,19 @@ mod tests {
     #[test]
     fn path_is_another_name_for_auto() {
         let r = render_args(&["render", "s.xml", "--integrator", "path"]);
-        assert_eq!(r.integrator, IntegratorPreset::Auto);
+        assert_eq!(r.integrator, Some(IntegratorPreset::Auto));
         // The alias is not a sixth preset: the help lists the five names.
-        let names: Vec<String> = IntegratorPreset::value_variants()
+        use clap::CommandFactory;
+        let command = Cli::command();
+        let render = command.find_subcommand("render").expect("render");
+        let argument = render
+            .get_arguments()
+            .find(|a| a.get_id() == "integrator")
+            .expect("--integrator");
+        let names: Vec<String> = argument
+            .get_possible_values()
             .iter()
-            .filter_map(|p| p.to_possible_value())
+            .filter(|v| !v.is_hide_set())
             .map(|v| v.get_name().to_string())
             .collect();
         assert_eq!(names, ["reference", "nee", "mis", "ris", "auto"]);
@@ -524,7 +555,7 @@ mod tests {
             assert_eq!(
                 render_args(&["render", "s.xml", "--out", "o.exr", "--integrator", name])
                     .integrator,
-                preset
+                Some(preset)
             );
         }
         for (name, sampler) in [

@@ -16,7 +16,7 @@ use crate::state::{FORMAT, RenderState, StateHeader, VERSION};
 use crate::stats::RenderStats;
 use crate::stop::StopSignal;
 use crate::summary::summary_line;
-use crate::technique::{RenderPlan, plan};
+use crate::technique::{self, RenderPlan, plan};
 use scene::SceneDesc;
 use scene::limits::MAX_FILM_PIXELS;
 
@@ -116,7 +116,10 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
         )));
     }
     if !args.quiet {
-        eprintln!("{}", summary_line(&out, &stats, args.integrator));
+        eprintln!(
+            "{}",
+            summary_line(&out, &stats, technique::preset(args, &scene.desc))
+        );
     }
     Ok(())
 }

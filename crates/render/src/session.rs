@@ -12,9 +12,7 @@ use crate::image::Image;
 use crate::technique::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
 use integrators::path_reuse::{self, ReusablePath};
-use integrators::{
-    BsdfSlot, LightTracer, PathIntegrator, RayCounters, RayLog, RayTally, reference,
-};
+use integrators::{LightTracer, PathIntegrator, reference};
 use sampling::Sampler;
 use sampling::sampler::{
     BlueNoiseSampler, IndependentSampler, PrefixSampler, SamplerKind, SobolSampler,
@@ -23,9 +21,10 @@ use sampling::sampler::{
 use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
+use world::{BsdfSlot, RayCounters, RayLog, RayTally};
 
-/// The light transport of a render, built for its world.
-enum Integrator {
+/// A render's [`Transport`] built for its world (the path tracer with its light selection table).
+enum BuiltTransport {
     Reference(reference::ReferenceSettings),
     Path(PathIntegrator),
 }
@@ -385,7 +384,7 @@ fn render_sampled<T: RayTally + Default + Send>(
 
 /// The integrator a render runs and, with caustics by light tracing, its light tracer.
 struct Integrators {
-    integrator: Integrator,
+    integrator: BuiltTransport,
     light_tracer: Option<LightTracer>,
 }
 
@@ -394,7 +393,7 @@ impl Integrators {
         let world = &scene.world;
         match plan.transport {
             Transport::Reference(settings) => Self {
-                integrator: Integrator::Reference(settings),
+                integrator: BuiltTransport::Reference(settings),
                 light_tracer: None,
             },
             Transport::Path(mut settings) => {
@@ -406,7 +405,7 @@ impl Integrators {
                 // Without the tracer the path tracer must keep every path.
                 settings.light_tracing = light_tracer.is_some();
                 Self {
-                    integrator: Integrator::Path(PathIntegrator::new(world, settings)),
+                    integrator: BuiltTransport::Path(PathIntegrator::new(world, settings)),
                     light_tracer,
                 }
             }
@@ -419,8 +418,8 @@ impl Integrators {
     /// integrator, which has no tricks. A light path drawn with the same sampler gets as many.
     fn pattern_dimensions(&self, has_lens: bool) -> u32 {
         match &self.integrator {
-            Integrator::Reference(_) => u32::MAX,
-            Integrator::Path(path) => {
+            BuiltTransport::Reference(_) => u32::MAX,
+            BuiltTransport::Path(path) => {
                 1 + u32::from(has_lens) + path.sampler_dimensions(PATTERN_VERTICES)
             }
         }
@@ -562,7 +561,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             radiance
         }
     };
-    if let Integrator::Path(path) = integrator
+    if let BuiltTransport::Path(path) = integrator
         && let Some(reuse) = path.settings().path_reuse
     {
         return render_blocks_splatting(
@@ -640,10 +639,10 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             let sampler = &mut worker.sampler;
             let rays_before = costs.map(|_| worker.tally.counts());
             let radiance = match &integrator {
-                Integrator::Reference(settings) => {
+                BuiltTransport::Reference(settings) => {
                     reference::radiance(world, ray, sampler, settings, &mut worker.tally)
                 }
-                Integrator::Path(path) => {
+                BuiltTransport::Path(path) => {
                     path.radiance(world, ray, sampler, &mut worker.tally, &mut worker.slot)
                 }
             };

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::atomic_write::{WriteError, write_bytes_atomically};
 use crate::driver::RenderOutput;
 use crate::technique::RenderPlan;
-use integrators::RayCounters;
+use world::RayCounters;
 
 /// What a render did and what it cost. Field names are part of the command-line contract.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -14,9 +14,8 @@
 
 use std::path::Path;
 
-use clap::ValueEnum;
+use scene::IntegratorPreset;
 
-use crate::cli::IntegratorPreset;
 use crate::stats::RenderStats;
 
 /// The summary line (without a newline) of a render that wrote `out`, with `stats`, as
@@ -28,9 +27,6 @@ pub fn summary_line(out: &Path, stats: &RenderStats, preset: IntegratorPreset) -
     } else {
         0.0
     };
-    let preset = preset
-        .to_possible_value()
-        .map_or_else(|| format!("{preset:?}"), |v| v.get_name().to_string());
     format!(
         "{}: {}×{}, {} spp, {:.2} s, {} rays/s, {preset}: {}",
         out.display(),

@@ -2,17 +2,13 @@
 //! flags on top of the scene file's settings, and the `auto` choice from the scene's features.
 
 use crate::auto::{self, Trials};
-use crate::cli::{
-    Cli, Command, IntegratorPreset, RenderArgs, ReuseFlag, SamplerKind as SamplerFlag,
-};
+use crate::cli::{Cli, Command, RenderArgs, ReuseFlag};
 use crate::driver::RenderBudget;
 use clap::Parser;
 use integrators::reference::ReferenceSettings;
-use integrators::{
-    DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
-};
+use integrators::{DirectSamples, LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
 use sampling::sampler::SamplerKind;
-use scene::{IntegratorKind, RenderScene, SamplerKind as SceneSampler, SceneDesc, SceneFeatures};
+use scene::{IntegratorDesc, IntegratorPreset, RenderScene, SceneDesc, SceneFeatures};
 
 /// Candidates per RIS light choice in the `ris` preset and in `auto`'s trial of RIS. Measured
 /// on the many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
@@ -28,7 +24,9 @@ pub const AUTO_ADAPTIVE_MIN_SPP: u32 = 32;
 /// laid out for this many samples, and any prefix of them is still unbiased.
 pub const TIME_BUDGET_NOMINAL_SPP: u32 = 4096;
 
-/// The light transport algorithm of a render.
+/// The light transport algorithm of a render, with every setting: what [`plan`] resolves the
+/// [`IntegratorPreset`] asked for (by `--integrator` or the scene) into, together with the
+/// scene's integrator settings, the other flags and, for `auto`, the scene's features.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Transport {
     /// The reference path tracer (no tricks).
@@ -83,23 +81,23 @@ impl RenderPlan {
     }
 }
 
-/// The sample counts of a scene's `direct` integrator, `None` for `path`.
-pub fn direct_samples(kind: IntegratorKind) -> Option<DirectSamples> {
-    match kind {
-        IntegratorKind::Direct {
-            emitter_samples,
-            bsdf_samples,
-        } => Some(DirectSamples {
-            light: emitter_samples,
-            bsdf: bsdf_samples,
-        }),
-        IntegratorKind::Path => None,
-    }
+/// The sample counts of a scene's `direct` integrator, `None` for the path tracers.
+pub fn direct_samples(integrator: &IntegratorDesc) -> Option<DirectSamples> {
+    integrator.direct.map(|direct| DirectSamples {
+        light: direct.emitter_samples,
+        bsdf: direct.bsdf_samples,
+    })
+}
+
+/// The preset a render runs: `--integrator`'s, or else the scene's.
+pub fn preset(args: &RenderArgs, desc: &SceneDesc) -> IntegratorPreset {
+    args.integrator.unwrap_or(desc.integrator.preset)
 }
 
 /// The plan for rendering `desc` (with `features`) as `args` ask.
 pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> RenderPlan {
-    let direct = direct_samples(desc.integrator.kind);
+    let preset = preset(args, desc);
+    let direct = direct_samples(&desc.integrator);
     let max_depth = match (args.max_depth, direct) {
         (Some(depth), _) => Some(depth),
         (None, Some(_)) => Some(2),
@@ -118,7 +116,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         sample_lights: true,
         sample_bsdf: true,
         mis: Mis::Off,
-        light_selection: LightSelectionMode::Power,
+        light_selection: LightSelection::Power,
         russian_roulette: roulette,
         light_tracing: false,
         direct_samples,
@@ -129,7 +127,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         mis: Mis::Power,
         ..nee
     };
-    let mut transport = match args.integrator {
+    let mut transport = match preset {
         IntegratorPreset::Reference => Transport::Reference(ReferenceSettings {
             max_depth,
             hide_emitters,
@@ -139,7 +137,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         IntegratorPreset::Nee => Transport::Path(nee),
         IntegratorPreset::Mis => Transport::Path(mis),
         IntegratorPreset::Ris => Transport::Path(PathSettings {
-            light_selection: LightSelectionMode::Ris {
+            light_selection: LightSelection::Ris {
                 candidates: RIS_CANDIDATES,
             },
             ..mis
@@ -149,7 +147,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
     if let (Transport::Path(settings), Some(rr)) = (&mut transport, args.rr) {
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
     }
-    let is_auto = args.integrator == IntegratorPreset::Auto;
+    let is_auto = preset == IntegratorPreset::Auto;
     let mut trials = Trials::default();
     if let Transport::Path(settings) = &mut transport {
         let tracing_applies = light_tracing_applies(
@@ -199,25 +197,14 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         }
     }
 
-    let scene_sampler = match desc.sampler.kind {
-        // Mitsuba's default, written into nearly every Mitsuba file: it carries no intent, so
-        // `auto` takes the sampler it measures best (Sobol, whose prefixes stay stratified under
-        // a time budget).
-        SceneSampler::Independent if is_auto => SamplerKind::Sobol,
-        SceneSampler::Independent => SamplerKind::Independent,
-        SceneSampler::Stratified | SceneSampler::Multijitter | SceneSampler::Orthogonal => {
-            SamplerKind::Stratified
-        }
-        // Mitsuba's `ldsampler` is a scrambled (0, 2)-sequence with per-dimension shuffles.
-        SceneSampler::Ldsampler => SamplerKind::Sobol,
-    };
-    let sampler = match args.sampler {
-        Some(SamplerFlag::Independent) => SamplerKind::Independent,
-        Some(SamplerFlag::Stratified) => SamplerKind::Stratified,
-        Some(SamplerFlag::BlueNoise) => SamplerKind::BlueNoise,
-        Some(SamplerFlag::Sobol) => SamplerKind::Sobol,
-        None => scene_sampler,
-    };
+    // Without a sampler on the command line, the scene's; where the scene names none (it says
+    // `independent`, Mitsuba's default, which carries no intent), `auto` takes the sampler it
+    // measures best (Sobol, whose prefixes stay stratified under a time budget).
+    let sampler = args.sampler.or(desc.sampler.kind).unwrap_or(if is_auto {
+        SamplerKind::Sobol
+    } else {
+        SamplerKind::Independent
+    });
     let seed = args.seed.map_or(desc.sampler.seed, fold_seed);
     let budget = match (args.spp, args.time) {
         (None, None) => RenderBudget::spp(desc.sampler.sample_count),
@@ -275,8 +262,8 @@ pub fn plan_from_flags(scene: &RenderScene, flags: &[&str]) -> Result<RenderPlan
 pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSettings {
     let sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
     let light_selection = match features.light_count {
-        0 | 1 => LightSelectionMode::Uniform,
-        _ => LightSelectionMode::Power,
+        0 | 1 => LightSelection::Uniform,
+        _ => LightSelection::Power,
     };
     PathSettings {
         sample_lights,
@@ -347,12 +334,12 @@ mod tests {
     fn auto_base_picks_one_light_uniformly_and_several_by_power() {
         assert_eq!(
             base(&features(1, 1, false)).light_selection,
-            LightSelectionMode::Uniform
+            LightSelection::Uniform
         );
         // Veach's scene: four spheres and the environment. RIS is a trial, not the base.
         assert_eq!(
             base(&features(5, 4, true)).light_selection,
-            LightSelectionMode::Power
+            LightSelection::Power
         );
     }
 

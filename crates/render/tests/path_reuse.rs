@@ -7,14 +7,13 @@ mod common;
 use common::{load_file, mis_power, scenes_dir};
 use glam::{UVec2, Vec2, Vec3};
 use integrators::path_reuse::combine;
-use integrators::{
-    BsdfSlot, PathIntegrator, PathReuse, PathSettings, RayCounters, RussianRoulette,
-};
+use integrators::{PathIntegrator, PathReuse, PathSettings, RussianRoulette};
 use render::driver::RenderOptions;
 use render::session::{film_filter, render_scene};
 use render::technique::{Transport, plan_from_flags};
 use sampling::Sampler;
 use sampling::sampler::IndependentSampler;
+use world::{BsdfSlot, RayCounters};
 
 const SEED: u32 = 3;
 

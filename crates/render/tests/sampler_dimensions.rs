@@ -10,9 +10,10 @@ mod common;
 
 use common::{load_file, mis_power, scenes_dir};
 use glam::{UVec2, Vec2};
-use integrators::{PathIntegrator, RayCounters, RussianRoulette};
+use integrators::{PathIntegrator, RussianRoulette};
 use sampling::Sampler;
 use sampling::sampler::IndependentSampler;
+use world::RayCounters;
 
 /// Where roulette starts in these tests (vertices 1 and 2 draw no roulette number).
 const ROULETTE_START: u32 = 3;
@@ -104,7 +105,7 @@ fn each_path_draws(
         draws: Vec::new(),
     };
     let mut counters = RayCounters::default();
-    let mut slot = integrators::BsdfSlot::default();
+    let mut slot = world::BsdfSlot::default();
     for y in 0..16 {
         for x in 0..16 {
             for index in 0..samples {

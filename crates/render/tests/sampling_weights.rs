@@ -11,7 +11,7 @@
 mod common;
 
 use common::{Target, load_xml, mis_power, render, z_test};
-use integrators::{LightSelectionMode, Mis, PathSettings};
+use integrators::{LightSelection, Mis, PathSettings};
 use render::technique::Transport;
 use sampling::sampler::SamplerKind;
 
@@ -73,7 +73,7 @@ fn sampling_weights_change_only_the_noise() {
         (
             "uniform selection, mis",
             PathSettings {
-                light_selection: LightSelectionMode::Uniform,
+                light_selection: LightSelection::Uniform,
                 ..mis_power(Some(3), false)
             },
         ),
@@ -87,7 +87,7 @@ fn sampling_weights_change_only_the_noise() {
         (
             "ris",
             PathSettings {
-                light_selection: LightSelectionMode::Ris { candidates: 4 },
+                light_selection: LightSelection::Ris { candidates: 4 },
                 ..mis_power(Some(3), false)
             },
         ),

@@ -51,7 +51,7 @@ mod common;
 
 use common::compare::{POWER, Power, Replicates, check_unbiased, compare};
 use common::{Configuration, configurations_with, load_version, mis_power, scenes_dir};
-use integrators::{LightSelectionMode, LightTracer, Mis, PathReuse, PathSettings};
+use integrators::{LightSelection, LightTracer, Mis, PathReuse, PathSettings};
 use render::auto::{REUSE_BLOCK, RIS_CANDIDATES, Trials};
 use render::technique::{RenderPlan, Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
@@ -710,13 +710,13 @@ fn check_auto(
         panic!("{name}: auto renders with the path tracer");
     };
     let ris = |s: PathSettings| PathSettings {
-        light_selection: LightSelectionMode::Ris {
+        light_selection: LightSelection::Ris {
             candidates: RIS_CANDIDATES,
         },
         ..s
     };
     let uniform_lights = |s: PathSettings| PathSettings {
-        light_selection: LightSelectionMode::Uniform,
+        light_selection: LightSelection::Uniform,
         ..s
     };
     let no_roulette = |s: PathSettings| PathSettings {

@@ -108,6 +108,25 @@ fn any_sampler_is_the_sampler_it_wraps() {
 }
 
 #[test]
+fn kinds_parse_from_their_names_and_nothing_else() {
+    assert_eq!(SamplerKind::ALL, KINDS);
+    for kind in KINDS {
+        assert_eq!(kind.to_string().parse::<SamplerKind>(), Ok(kind));
+    }
+    let names: Vec<String> = KINDS.iter().map(ToString::to_string).collect();
+    assert_eq!(names, ["independent", "stratified", "bluenoise", "sobol"]);
+    for bad in ["", "Sobol", "blue-noise", "ldsampler", "halton"] {
+        let error = bad.parse::<SamplerKind>().expect_err(bad).to_string();
+        assert_eq!(
+            error,
+            format!(
+                "no sampler called '{bad}' (expected independent, stratified, bluenoise or sobol)"
+            )
+        );
+    }
+}
+
+#[test]
 fn values_lie_in_the_half_open_unit_interval() {
     for kind in KINDS {
         for spp in [1, 3, 16, 1000] {

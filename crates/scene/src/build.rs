@@ -9,7 +9,6 @@ use crate::{
     ShapeDesc,
 };
 use geometry::{Accel, Shape, Sphere, TriangleMesh};
-use integrators::{Checkerboard, MaterialTexture, World};
 use lights::{
     ConstantEnvironment, DirectionalLight, EnvironmentMap, Light, MeshAreaLight, PointLight,
     SphereAreaLight, SpotLight,
@@ -18,6 +17,7 @@ use materials::{
     Blend, Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
     RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
+use world::{Checkerboard, MaterialTexture, World};
 
 /// A scene ready to render: what light transport needs, the camera, and the description's
 /// render settings (film, sampler, integrator).

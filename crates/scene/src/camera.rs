@@ -2,7 +2,7 @@
 
 use geometry::Ray;
 use glam::{Mat4, UVec2, Vec2, Vec3};
-use integrators::{CameraConnection, CameraRay};
+use world::{CameraConnection, CameraRay};
 
 use crate::desc::SensorDesc;
 use sampling::warp::sample_concentric_disk;

@@ -70,9 +70,9 @@ use std::path::Path;
 pub use build::{RenderScene, build};
 pub use camera::{Camera, ThinLens};
 pub use desc::{
-    AreaEmitterDesc, BsdfDesc, EmitterDesc, FilmDesc, FilterDesc, FovAxis, Geometry,
-    IntegratorDesc, IntegratorKind, MeshDesc, MicrofacetDistribution, Roughness, SamplerDesc,
-    SamplerKind, SceneDesc, SensorDesc, ShapeDesc, SphereDesc, ThinLensDesc,
+    AreaEmitterDesc, BsdfDesc, DirectDesc, EmitterDesc, FilmDesc, FilterDesc, FovAxis, Geometry,
+    IntegratorDesc, IntegratorPreset, MeshDesc, MicrofacetDistribution, Roughness, SamplerDesc,
+    SceneDesc, SensorDesc, ShapeDesc, SphereDesc, ThinLensDesc, UnknownIntegrator,
 };
 pub use error::LoadError;
 pub use features::SceneFeatures;

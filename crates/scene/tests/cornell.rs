@@ -5,8 +5,8 @@ mod common;
 use common::{close, data_dir, triangle_normal};
 use glam::{Vec2, Vec3};
 use scene::{
-    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
-    MicrofacetDistribution, Roughness, SamplerKind, SceneDesc, ShapeDesc,
+    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorPreset, MeshDesc,
+    MicrofacetDistribution, Roughness, SceneDesc, ShapeDesc,
 };
 
 /// The fixture as loaded: relative to its camera at (0, 1, 6.8).
@@ -268,13 +268,14 @@ fn flipped_disk_faces_down_with_a_mirror() {
 #[test]
 fn render_settings() {
     let desc = cornell();
-    assert_eq!(desc.integrator.kind, IntegratorKind::Path);
+    assert_eq!(desc.integrator.preset, IntegratorPreset::Auto);
+    assert_eq!(desc.integrator.direct, None);
     assert_eq!(desc.integrator.max_depth, 8);
     assert_eq!(desc.integrator.rr_depth, 3);
     assert!(!desc.integrator.hide_emitters);
     assert_eq!((desc.film.width, desc.film.height), (128, 96));
     assert_eq!(desc.film.filter, FilterDesc::Tent { radius: 1.5 });
-    assert_eq!(desc.sampler.kind, SamplerKind::Stratified);
+    assert_eq!(desc.sampler.kind, Some(sampling::SamplerKind::Stratified));
     assert_eq!(desc.sampler.sample_count, 16);
     assert_eq!(desc.sampler.seed, 7);
     assert_eq!(desc.sensor.fov_axis, FovAxis::Smaller);

@@ -4,9 +4,10 @@ mod common;
 
 use common::{close, data_dir, load, triangle_normal, wrap, write_scene};
 use glam::{Vec2, Vec3};
+use sampling::SamplerKind;
 use scene::{
-    BsdfDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorKind, MeshDesc,
-    MicrofacetDistribution, Roughness, SamplerDesc, SamplerKind, SceneDesc, SphereDesc,
+    BsdfDesc, DirectDesc, EmitterDesc, FilterDesc, FovAxis, Geometry, IntegratorPreset, MeshDesc,
+    MicrofacetDistribution, Roughness, SamplerDesc, SceneDesc, SphereDesc,
 };
 
 fn ok(name: &str, text: &str) -> SceneDesc {
@@ -23,7 +24,8 @@ fn only_mesh(desc: &SceneDesc) -> &MeshDesc {
 #[test]
 fn mitsuba_defaults() {
     let desc = ok("defaults.xml", &wrap("<shape type=\"sphere\"/>"));
-    assert_eq!(desc.integrator.kind, IntegratorKind::Path);
+    assert_eq!(desc.integrator.preset, IntegratorPreset::Auto);
+    assert_eq!(desc.integrator.direct, None);
     assert_eq!(desc.integrator.max_depth, -1);
     assert_eq!(desc.integrator.rr_depth, 5);
     assert!(!desc.integrator.hide_emitters);
@@ -46,8 +48,9 @@ fn mitsuba_defaults() {
     assert_eq!(
         desc.sampler,
         SamplerDesc {
-            kind: SamplerKind::Independent,
+            kind: None,
             sample_count: 4,
+            mitsuba_sample_count: 4,
             seed: 0
         }
     );
@@ -633,11 +636,13 @@ fn direct_sample_counts() {
             ),
         )
         .integrator
-        .kind
+        .direct
     };
-    let direct = |emitter_samples, bsdf_samples| IntegratorKind::Direct {
-        emitter_samples,
-        bsdf_samples,
+    let direct = |emitter_samples, bsdf_samples| {
+        Some(DirectDesc {
+            emitter_samples,
+            bsdf_samples,
+        })
     };
     assert_eq!(kind(""), direct(1, 1));
     assert_eq!(
@@ -771,12 +776,13 @@ fn thin_lens_and_focal_length() {
 </scene>",
     );
     assert_eq!(
-        desc.integrator.kind,
-        IntegratorKind::Direct {
+        desc.integrator.direct,
+        Some(DirectDesc {
             emitter_samples: 1,
             bsdf_samples: 1
-        }
+        })
     );
+    assert_eq!(desc.integrator.preset, IntegratorPreset::Auto);
     assert_eq!(desc.integrator.max_depth, 2);
     assert!(desc.integrator.hide_emitters);
     let lens = desc.sensor.lens.unwrap();
@@ -846,45 +852,47 @@ fn emitters() {
     assert_eq!(desc.shapes[0].emitter.unwrap().radiance, Vec3::ONE);
 }
 
+/// The sampler `plugin` with `sample_count`, as the loader reads it.
+fn sampler(plugin: &str, sample_count: u32) -> SamplerDesc {
+    ok(
+        &format!("sampler-{plugin}-{sample_count}.xml"),
+        &format!(
+            "<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\">\
+             <sampler type=\"{plugin}\"><integer name=\"sample_count\" value=\"{sample_count}\"/>\
+             </sampler></sensor></scene>"
+        ),
+    )
+    .sampler
+}
+
+#[test]
+fn mitsuba_samplers_map_to_the_nearest_strata_sampler() {
+    // `independent` is Mitsuba's default and carries no intent: no sampler is chosen.
+    assert_eq!(sampler("independent", 4).kind, None);
+    for plugin in ["stratified", "multijitter", "orthogonal"] {
+        assert_eq!(
+            sampler(plugin, 4).kind,
+            Some(SamplerKind::Stratified),
+            "{plugin}"
+        );
+    }
+    assert_eq!(sampler("ldsampler", 4).kind, Some(SamplerKind::Sobol));
+    assert_eq!(sampler("stratified", 10).sample_count, 10);
+}
+
 #[test]
 fn sampler_counts_follow_mitsuba_rounding() {
-    let sampler = |kind, sample_count| SamplerDesc {
-        kind,
-        sample_count,
-        seed: 0,
-    };
-    assert_eq!(
-        sampler(SamplerKind::Independent, 10).mitsuba_sample_count(),
-        10
-    );
-    assert_eq!(
-        sampler(SamplerKind::Stratified, 10).mitsuba_sample_count(),
-        16
-    );
-    assert_eq!(
-        sampler(SamplerKind::Stratified, 16).mitsuba_sample_count(),
-        16
-    );
-    assert_eq!(
-        sampler(SamplerKind::Multijitter, 10).mitsuba_sample_count(),
-        12
-    );
-    assert_eq!(
-        sampler(SamplerKind::Ldsampler, 10).mitsuba_sample_count(),
-        16
-    );
-    assert_eq!(
-        sampler(SamplerKind::Ldsampler, 17).mitsuba_sample_count(),
-        64
-    );
-    assert_eq!(sampler(SamplerKind::Ldsampler, 1).mitsuba_sample_count(), 4);
+    let count = |plugin, sample_count| sampler(plugin, sample_count).mitsuba_sample_count;
+    assert_eq!(count("independent", 10), 10);
+    assert_eq!(count("stratified", 10), 16);
+    assert_eq!(count("stratified", 16), 16);
+    assert_eq!(count("multijitter", 10), 12);
+    assert_eq!(count("ldsampler", 10), 16);
+    assert_eq!(count("ldsampler", 17), 64);
+    assert_eq!(count("ldsampler", 1), 4);
     // Orthogonal arrays: the square of the next prime (4 is 2², 10 rounds to 5², 26 to 7²).
     for (spp, expected) in [(4, 4), (5, 9), (9, 9), (10, 25), (26, 49)] {
-        assert_eq!(
-            sampler(SamplerKind::Orthogonal, spp).mitsuba_sample_count(),
-            expected,
-            "orthogonal {spp}"
-        );
+        assert_eq!(count("orthogonal", spp), expected, "orthogonal {spp}");
     }
 }
 
@@ -999,7 +1007,8 @@ fn volumetric_path_tracers_are_the_path_tracer() {
             ),
         );
         let desc = ok(&format!("{plugin}.xml"), &text);
-        assert_eq!(desc.integrator.kind, IntegratorKind::Path, "{plugin}");
+        assert_eq!(desc.integrator.preset, IntegratorPreset::Auto, "{plugin}");
+        assert_eq!(desc.integrator.direct, None, "{plugin}");
         assert_eq!(
             (
                 desc.integrator.max_depth,
@@ -1024,6 +1033,68 @@ fn volumetric_path_tracers_are_the_path_tracer() {
     }
     let path = ok("path.xml", &wrap(""));
     assert!(!path.integrator.skip_null_vertices);
+}
+
+/// Strata's presets by name in `<integrator type>`, parsed as the command line parses them, with
+/// `path`'s parameters; an unknown type is an error naming the element, its line and every
+/// supported type.
+#[test]
+fn strata_presets_are_integrator_types() {
+    for preset in IntegratorPreset::ALL {
+        let text = wrap("").replace(
+            "<integrator type=\"path\"/>",
+            &format!(
+                "<integrator type=\"{preset}\"><integer name=\"max_depth\" value=\"4\"/><integer name=\"rr_depth\" value=\"2\"/></integrator>"
+            ),
+        );
+        let desc = ok(&format!("preset-{preset}.xml"), &text);
+        assert_eq!(desc.integrator.preset, preset);
+        assert_eq!(
+            (
+                desc.integrator.direct,
+                desc.integrator.max_depth,
+                desc.integrator.rr_depth,
+                desc.integrator.hide_emitters,
+                desc.integrator.skip_null_vertices
+            ),
+            (None, 4, 2, false, false),
+            "{preset}"
+        );
+    }
+    let text = wrap("").replace("<integrator type=\"path\"/>", "<integrator type=\"bdpt\"/>");
+    let err = load("bdpt.xml", &text).unwrap_err();
+    assert_eq!(err.line, 2, "{err}");
+    let message = err.to_string();
+    for name in [
+        "bdpt",
+        "<integrator",
+        "path",
+        "direct",
+        "reference",
+        "nee",
+        "mis",
+        "ris",
+        "auto",
+    ] {
+        assert!(message.contains(name), "{name}: {message}");
+    }
+}
+
+#[test]
+fn preset_names_parse_and_print() {
+    for preset in IntegratorPreset::ALL {
+        assert_eq!(preset.to_string().parse::<IntegratorPreset>(), Ok(preset));
+    }
+    assert_eq!(
+        "path".parse::<IntegratorPreset>(),
+        Ok(IntegratorPreset::Auto)
+    );
+    assert_eq!(IntegratorPreset::default(), IntegratorPreset::Auto);
+    let err = "direct".parse::<IntegratorPreset>().unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "no integrator called 'direct' (expected reference, nee, mis, ris, auto or path)"
+    );
 }
 
 #[test]
@@ -1339,11 +1410,11 @@ fn moment_integrator_reads_its_nested_integrator() {
     );
     let desc = ok("moment.xml", &text);
     assert!(matches!(
-        desc.integrator.kind,
-        IntegratorKind::Direct {
+        desc.integrator.direct,
+        Some(DirectDesc {
             emitter_samples: 3,
             ..
-        }
+        })
     ));
     let empty = wrap("").replace(
         "<integrator type=\"path\"/>",

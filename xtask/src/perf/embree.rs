@@ -23,12 +23,12 @@
 
 use super::median;
 use geometry::{Accel, Shape, TriangleMesh};
-use integrators::RayLog;
 use rayon::prelude::*;
 use serde_json::Value;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use world::RayLog;
 
 /// Times each sphere's icosahedron is split (four triangles each time): 20 · 4^4 = 5120
 /// triangles per sphere.

@@ -831,7 +831,7 @@ mod tests {
             );
             assert_eq!((desc.film.width, desc.film.height), (64, 64));
             assert_eq!(desc.integrator.max_depth, MAX_DEPTH as i32);
-            assert_eq!(desc.sampler.kind, scene::SamplerKind::Independent);
+            assert_eq!(desc.sampler.kind, None, "independent");
             assert!(matches!(
                 desc.film.filter,
                 scene::FilterDesc::Box | scene::FilterDesc::Gaussian { .. }

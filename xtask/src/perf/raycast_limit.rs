@@ -18,7 +18,6 @@
 use super::embree::{self, median_times};
 use super::{median, pool, positive, scene_path};
 use geometry::Accel;
-use integrators::{RayCounters, RayLog};
 use rayon::prelude::*;
 use render::driver::RenderOptions;
 use render::session::{film_filter, render_scene, render_scene_recording};
@@ -26,6 +25,7 @@ use render::technique::plan_from_flags;
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
+use world::{RayCounters, RayLog};
 
 /// Rays per parallel work item when tracing recorded rays.
 const CHUNK: usize = 4096;

@@ -622,7 +622,7 @@ fn choice_label(
     output: &RenderOutput,
 ) -> Result<String, String> {
     let plan = plan_from_flags(scene, flags)?;
-    let sampler = format!("{:?}", plan.sampler).to_lowercase();
+    let sampler = plan.sampler.to_string();
     let adaptive = if output.pilot_spp > 0 {
         " adaptive"
     } else {

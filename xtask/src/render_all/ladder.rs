@@ -2,9 +2,7 @@
 //! rung, plus `auto`; rungs that cannot apply to the scene are left out.
 
 use integrators::reference::ReferenceSettings;
-use integrators::{
-    DirectSamples, LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette,
-};
+use integrators::{DirectSamples, LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
 use render::auto::{REUSE_BLOCK, Trials};
 use render::technique::{RIS_CANDIDATES, RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
@@ -38,7 +36,7 @@ impl Configuration {
     /// (`pilot-tries-…`), since the pilot decides the rest on the scene.
     pub fn techniques(&self) -> Vec<String> {
         let mut names = self.transport.technique_names();
-        names.push(format!("sampler-{}", sampler_name(self.sampler)));
+        names.push(format!("sampler-{}", self.sampler));
         if self.adaptive {
             names.push("adaptive-sampling".to_string());
         }
@@ -55,16 +53,6 @@ impl Configuration {
                 .map(|(_, name)| format!("pilot-tries-{name}")),
         );
         names
-    }
-}
-
-/// The sampler's name as the command line's `--sampler` spells it.
-pub fn sampler_name(kind: SamplerKind) -> &'static str {
-    match kind {
-        SamplerKind::Independent => "independent",
-        SamplerKind::Stratified => "stratified",
-        SamplerKind::BlueNoise => "bluenoise",
-        SamplerKind::Sobol => "sobol",
     }
 }
 
@@ -97,7 +85,7 @@ impl SceneTransport {
             sample_lights: true,
             sample_bsdf: true,
             mis: Mis::Power,
-            light_selection: LightSelectionMode::Power,
+            light_selection: LightSelection::Power,
             russian_roulette: None,
             light_tracing: false,
             direct_samples: self.direct_samples,
@@ -191,8 +179,8 @@ pub fn ladder(
         .any(|c| c.name == best_name)
         .then_some(best_name);
     if can_sample_lights && features.light_count > 1 {
-        let uniform = LightSelectionMode::Uniform;
-        let ris = LightSelectionMode::Ris {
+        let uniform = LightSelection::Uniform;
+        let ris = LightSelection::Ris {
             candidates: RIS_CANDIDATES,
         };
         for (name, light_selection) in [("uniform-lights", uniform), ("ris-lights", ris)] {

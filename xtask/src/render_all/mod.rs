@@ -44,7 +44,7 @@ impl SuiteScene {
     /// What the scene file fixes for every configuration (depth as `strata render` reads it).
     fn transport(&self) -> SceneTransport {
         let integrator = &self.scene.desc.integrator;
-        let direct_samples = direct_samples(integrator.kind);
+        let direct_samples = direct_samples(integrator);
         let max_depth = match direct_samples {
             Some(_) => Some(2),
             None => u32::try_from(integrator.max_depth).ok(),

@@ -2,7 +2,7 @@
 //! time budgets, measured against the stored reference.
 
 use super::error_map::error_map;
-use super::ladder::{Configuration, ladder, sampler_name};
+use super::ladder::{Configuration, ladder};
 use super::preview::{exposed, exposure};
 use super::report::{
     AUTO, AutoRecord, Measurement, RunInfo, Rung, STORED_REFERENCE, SceneReport, write_report,
@@ -202,7 +202,7 @@ fn auto_record(seed: u32, configuration: &Configuration, output: &RenderOutput) 
             "no pilot: nothing for it to try on this scene".to_string(),
         ),
     };
-    techniques.push(format!("sampler-{}", sampler_name(configuration.sampler)));
+    techniques.push(format!("sampler-{}", configuration.sampler));
     if output.pilot_spp > 0 {
         techniques.push("adaptive-sampling".to_string());
     }

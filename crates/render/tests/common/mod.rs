@@ -7,7 +7,7 @@ pub mod compare;
 
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
-use integrators::{LightSelectionMode, Mis, PathReuse, PathSettings, RussianRoulette};
+use integrators::{LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
 use render::driver::{RenderOptions, RenderOutput};
 use render::film::Film;
 use render::session::{film_filter, render_scene};
@@ -195,7 +195,7 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
         sample_lights: true,
         sample_bsdf: true,
         mis: Mis::Power,
-        light_selection: LightSelectionMode::Power,
+        light_selection: LightSelection::Power,
         russian_roulette: None,
         light_tracing: false,
         direct_samples: None,
@@ -274,14 +274,14 @@ fn switches(base: PathSettings, sampler: SamplerKind) -> Vec<Configuration> {
         switch(
             "mis power uniform selection",
             PathSettings {
-                light_selection: LightSelectionMode::Uniform,
+                light_selection: LightSelection::Uniform,
                 ..base
             },
         ),
         switch(
             "ris 8",
             PathSettings {
-                light_selection: LightSelectionMode::Ris { candidates: 8 },
+                light_selection: LightSelection::Ris { candidates: 8 },
                 ..base
             },
         ),

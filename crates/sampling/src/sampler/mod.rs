@@ -40,6 +40,9 @@ pub use prefix::PrefixSampler;
 pub use sobol::SobolSampler;
 pub use stratified::StratifiedSampler;
 
+use std::fmt;
+use std::str::FromStr;
+
 use glam::{UVec2, Vec2};
 
 /// A source of sample values in [0, 1) for Monte Carlo integration over a pixel, one dimension at a time.
@@ -55,6 +58,10 @@ pub trait Sampler {
 }
 
 /// Which sampler an [`AnySampler`] is: the user-facing choice of sampling pattern.
+///
+/// Its names ([`SamplerKind::name`], [`Display`](fmt::Display) and [`FromStr`]) are the
+/// renderer's command-line names: `independent`, `stratified`, `bluenoise` and `sobol`. (A scene
+/// file names Mitsuba's samplers instead; the scene loader maps those onto these.)
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum SamplerKind {
     /// [`IndependentSampler`]: independent uniform random numbers.
@@ -68,6 +75,65 @@ pub enum SamplerKind {
     /// 2D dimension at every power-of-two prefix).
     Sobol,
 }
+
+impl SamplerKind {
+    /// Every kind, in the order the command line lists them.
+    pub const ALL: [SamplerKind; 4] = [
+        SamplerKind::Independent,
+        SamplerKind::Stratified,
+        SamplerKind::BlueNoise,
+        SamplerKind::Sobol,
+    ];
+
+    /// The kind's name: `independent`, `stratified`, `bluenoise` or `sobol`.
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Independent => "independent",
+            SamplerKind::Stratified => "stratified",
+            SamplerKind::BlueNoise => "bluenoise",
+            SamplerKind::Sobol => "sobol",
+        }
+    }
+}
+
+impl fmt::Display for SamplerKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for SamplerKind {
+    type Err = UnknownSamplerKind;
+
+    /// The kind called `name` (exactly, as [`SamplerKind::name`] spells it).
+    fn from_str(name: &str) -> Result<Self, Self::Err> {
+        SamplerKind::ALL
+            .into_iter()
+            .find(|kind| kind.name() == name)
+            .ok_or_else(|| UnknownSamplerKind(name.to_string()))
+    }
+}
+
+/// A name that is not a [`SamplerKind`]'s; its message lists the names there are.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnknownSamplerKind(pub String);
+
+impl fmt::Display for UnknownSamplerKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "no sampler called '{}' (expected ", self.0)?;
+        for (i, kind) in SamplerKind::ALL.into_iter().enumerate() {
+            let separator = match i {
+                0 => "",
+                _ if i + 1 == SamplerKind::ALL.len() => " or ",
+                _ => ", ",
+            };
+            write!(f, "{separator}{kind}")?;
+        }
+        f.write_str(")")
+    }
+}
+
+impl std::error::Error for UnknownSamplerKind {}
 
 /// Any of the samplers behind one type, dispatched by `match` (no trait objects in the hot loop).
 #[derive(Clone, Debug)]

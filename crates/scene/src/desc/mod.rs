@@ -9,8 +9,8 @@ use std::path::PathBuf;
 
 pub use material::{AreaEmitterDesc, BsdfDesc, EmitterDesc, MicrofacetDistribution, Roughness};
 pub use render::{
-    FilmDesc, FilterDesc, FovAxis, IntegratorDesc, IntegratorKind, SamplerDesc, SamplerKind,
-    SensorDesc, ThinLensDesc,
+    DirectDesc, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, IntegratorPreset, SamplerDesc,
+    SensorDesc, ThinLensDesc, UnknownIntegrator,
 };
 pub use shape::{Geometry, MeshDesc, ShapeDesc, SphereDesc};
 

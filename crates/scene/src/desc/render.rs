@@ -1,31 +1,131 @@
 //! Descriptions of how the scene is rendered: integrator, camera, film and sampler.
 
-use glam::{DVec3, Mat4};
+use std::fmt;
+use std::str::FromStr;
 
-/// Which light transport algorithm the scene asks for (`<integrator type="...">`).
+use glam::{DVec3, Mat4};
+use sampling::SamplerKind;
+
+/// The integrator a user asks for, by `strata render --integrator NAME` or by a scene's
+/// `<integrator type="NAME">`: one of Strata's presets, named by [`FromStr`] and [`Display`](fmt::Display)
+/// (`reference`, `nee`, `mis`, `ris`, `auto`; `path`, Mitsuba's name for its path tracer, is
+/// another name for `auto`). The flag overrides the scene's; Mitsuba's integrators (`path`,
+/// `volpath`, `direct`, …) ask for `auto`.
+///
+/// A renderer resolves the preset, with the rest of [`IntegratorDesc`] and the scene's features,
+/// into the light transport it runs (`render::technique::Transport`: the reference path tracer
+/// or the path tracer with every switch set).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub enum IntegratorPreset {
+    /// No tricks: uniform direction sampling, emission counted on hit (the oracle).
+    Reference,
+    /// BSDF sampling plus next event estimation with power-proportional light selection and
+    /// Russian roulette, no MIS.
+    Nee,
+    /// `nee` plus MIS (power heuristic) between light and BSDF samples.
+    Mis,
+    /// `mis` with RIS light selection.
+    Ris,
+    /// The best of these for the scene, leaving out what it does not need (also `path`).
+    #[default]
+    Auto,
+}
+
+impl IntegratorPreset {
+    /// Every preset, in the order the command line lists them.
+    pub const ALL: [IntegratorPreset; 5] = [
+        IntegratorPreset::Reference,
+        IntegratorPreset::Nee,
+        IntegratorPreset::Mis,
+        IntegratorPreset::Ris,
+        IntegratorPreset::Auto,
+    ];
+
+    /// Other names [`FromStr`] accepts, with the preset each names: `path`, Mitsuba's name for
+    /// its path tracer, is `auto`.
+    pub const ALIASES: [(&'static str, IntegratorPreset); 1] = [("path", IntegratorPreset::Auto)];
+
+    /// The preset's name: `reference`, `nee`, `mis`, `ris` or `auto`.
+    pub fn name(self) -> &'static str {
+        match self {
+            IntegratorPreset::Reference => "reference",
+            IntegratorPreset::Nee => "nee",
+            IntegratorPreset::Mis => "mis",
+            IntegratorPreset::Ris => "ris",
+            IntegratorPreset::Auto => "auto",
+        }
+    }
+}
+
+impl fmt::Display for IntegratorPreset {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for IntegratorPreset {
+    type Err = UnknownIntegrator;
+
+    /// The preset called `name` (exactly, as [`IntegratorPreset::name`] or
+    /// [`IntegratorPreset::ALIASES`] spell it).
+    fn from_str(name: &str) -> Result<Self, Self::Err> {
+        IntegratorPreset::ALL
+            .map(|preset| (preset.name(), preset))
+            .into_iter()
+            .chain(IntegratorPreset::ALIASES)
+            .find(|&(known, _)| known == name)
+            .map(|(_, preset)| preset)
+            .ok_or_else(|| UnknownIntegrator(name.to_string()))
+    }
+}
+
+/// A name that is not an [`IntegratorPreset`]'s; its message lists the names there are.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnknownIntegrator(pub String);
+
+impl fmt::Display for UnknownIntegrator {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let names: Vec<&str> = IntegratorPreset::ALL
+            .map(IntegratorPreset::name)
+            .into_iter()
+            .chain(IntegratorPreset::ALIASES.map(|(name, _)| name))
+            .collect();
+        write!(
+            f,
+            "no integrator called '{}' (expected {} or {})",
+            self.0,
+            names[..names.len() - 1].join(", "),
+            names[names.len() - 1]
+        )
+    }
+}
+
+impl std::error::Error for UnknownIntegrator {}
+
+/// Mitsuba's `direct` integrator: direct illumination only, by `emitter_samples` light samples
+/// and `bsdf_samples` BSDF samples at the camera ray's hit, combined by the power heuristic over
+/// the counts. With at least one of each, the same expectation as a path tracer with
+/// `max_depth` 2; zero of a kind leaves out what only that kind reaches (delta lights; what a
+/// mirror or glass shows).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum IntegratorKind {
-    /// `path`: unidirectional path tracing.
-    Path,
-    /// `direct`: direct illumination only, by `emitter_samples` light samples and `bsdf_samples`
-    /// BSDF samples at the camera ray's hit, combined by the power heuristic over the counts.
-    /// With at least one of each, the same expectation as `Path` with `max_depth` 2; zero of a
-    /// kind leaves out what only that kind reaches (delta lights; what a mirror or glass shows).
-    Direct {
-        /// Light samples per camera sample (Mitsuba's `emitter_samples`, default 1).
-        emitter_samples: u32,
-        /// BSDF samples per camera sample (Mitsuba's `bsdf_samples`, default 1).
-        bsdf_samples: u32,
-    },
+pub struct DirectDesc {
+    /// Light samples per camera sample (Mitsuba's `emitter_samples`, default 1).
+    pub emitter_samples: u32,
+    /// BSDF samples per camera sample (Mitsuba's `bsdf_samples`, default 1).
+    pub bsdf_samples: u32,
 }
 
 /// The `<integrator>` element with Mitsuba's defaults.
 #[derive(Debug, Clone, PartialEq)]
 pub struct IntegratorDesc {
-    /// The algorithm.
-    pub kind: IntegratorKind,
+    /// The preset the scene asks for: the one `type` names for Strata's presets, `auto` for
+    /// Mitsuba's integrators.
+    pub preset: IntegratorPreset,
+    /// Mitsuba's `direct` integrator's sample counts, `None` for the path tracers. Direct
+    /// lighting is rendered with whichever preset's techniques.
+    pub direct: Option<DirectDesc>,
     /// Longest path in vertices after the camera (Mitsuba's meaning: 1 shows only directly visible
-    /// emitters, 2 adds direct lighting); -1 means unlimited. Default -1; `Direct` is always 2.
+    /// emitters, 2 adds direct lighting); -1 means unlimited. Default -1; `direct` is always 2.
     pub max_depth: i32,
     /// Path depth at which Russian roulette starts (Mitsuba's `rr_depth`, default 5, at least 1).
     pub rr_depth: u32,
@@ -33,8 +133,8 @@ pub struct IntegratorDesc {
     pub hide_emitters: bool,
     /// Mitsuba's volumetric path tracers (`volpath`, `volpathmis`, `prbvolpath`): a pass straight
     /// through a null lobe (`null`, a mask's transparency, a thin dielectric's transmission) is
-    /// not a path vertex and does not count towards `max_depth`. False for `path`, `prb` and
-    /// `direct`.
+    /// not a path vertex and does not count towards `max_depth`. False for `path`, `prb`,
+    /// `direct` and Strata's presets.
     pub skip_null_vertices: bool,
 }
 
@@ -191,74 +291,23 @@ impl FilmDesc {
     }
 }
 
-/// The sample generator the scene names (`<sampler type="...">`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SamplerKind {
-    /// `independent`: independent uniform samples.
-    Independent,
-    /// `stratified`: jittered strata.
-    Stratified,
-    /// `multijitter`: correlated multi-jittered samples.
-    Multijitter,
-    /// `ldsampler`: a low-discrepancy (0,2)-sequence.
-    Ldsampler,
-    /// `orthogonal`: an orthogonal array (Jarosz et al. 2019), generalising multi-jittered
-    /// sampling to higher dimensions.
-    Orthogonal,
-}
-
 /// The `<sampler>` element.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SamplerDesc {
-    /// Which sampler.
-    pub kind: SamplerKind,
+    /// The Strata sampler nearest to the file's Mitsuba sampler: `stratified`, `multijitter`
+    /// and `orthogonal` are [`SamplerKind::Stratified`], `ldsampler` (a scrambled (0, 2)-sequence)
+    /// is [`SamplerKind::Sobol`]. `None` for `independent`, Mitsuba's default, which nearly every
+    /// Mitsuba file writes and which so carries no intent (also when the file has no
+    /// `<sampler>`): a renderer then uses independent samples unless it picks its own (`strata
+    /// render`'s `auto` takes Sobol).
+    pub kind: Option<SamplerKind>,
     /// Samples per pixel as written in the file (default 4); see
     /// [`SamplerDesc::mitsuba_sample_count`] for the count Mitsuba actually renders.
     pub sample_count: u32,
+    /// The samples per pixel Mitsuba renders the file's sampler with: `stratified` rounds
+    /// `sample_count` up to a square, `multijitter` to a near-square product, `ldsampler` to a
+    /// square of a power of two and `orthogonal` to the square of a prime.
+    pub mitsuba_sample_count: u64,
     /// Seed offset (default 0).
     pub seed: u32,
-}
-
-impl SamplerDesc {
-    /// The samples per pixel Mitsuba renders with: `stratified` rounds up to a square,
-    /// `multijitter` to a near-square product, `ldsampler` to a square of a power of two and
-    /// `orthogonal` to the square of a prime.
-    pub fn mitsuba_sample_count(&self) -> u64 {
-        let spp = u64::from(self.sample_count);
-        match self.kind {
-            SamplerKind::Independent => spp,
-            SamplerKind::Stratified => {
-                let mut res = 1u64;
-                while res * res < spp {
-                    res += 1;
-                }
-                res * res
-            }
-            SamplerKind::Multijitter => {
-                let rows = (spp as f64).sqrt() as u64;
-                let cols = spp.div_ceil(rows);
-                rows * cols
-            }
-            SamplerKind::Ldsampler => {
-                let mut res = 2u64;
-                while res * res < spp {
-                    res = (res + 1).next_power_of_two();
-                }
-                res * res
-            }
-            SamplerKind::Orthogonal => {
-                let is_prime = |x: u64| {
-                    x >= 2
-                        && (2..)
-                            .take_while(|d| d * d <= x)
-                            .all(|d| !x.is_multiple_of(d))
-                };
-                let mut res = 2u64;
-                while res * res < spp || !is_prime(res) {
-                    res += 1;
-                }
-                res * res
-            }
-        }
-    }
 }

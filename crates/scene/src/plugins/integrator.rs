@@ -1,10 +1,13 @@
 //! `<integrator type="path">` (and `volpath`, `volpathmis`, which are the path tracer in scenes
 //! without participating media, the only scenes Strata reads, but for passes through null lobes,
 //! which are not path vertices to them; and the differentiable variants' `prb` and
-//! `prbvolpath`, whose images are `path`'s and `volpath`'s) and `<integrator type="direct">`.
+//! `prbvolpath`, whose images are `path`'s and `volpath`'s) and `<integrator type="direct">`,
+//! which all ask for Strata's `auto` preset; and Strata's presets by name
+//! (`<integrator type="mis">`, parsed by [`IntegratorPreset`]'s `FromStr`), which take `path`'s
+//! parameters.
 
 use super::{no_children, unknown_type};
-use crate::desc::{IntegratorDesc, IntegratorKind};
+use crate::desc::{DirectDesc, IntegratorDesc, IntegratorPreset};
 use crate::error::Result;
 use crate::limits::MAX_DIRECT_SAMPLES;
 use crate::params::Params;
@@ -32,42 +35,54 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
     }
     no_children(node)?;
     let mut params = Params::new(node);
-    let desc = match node.plugin.as_str() {
-        "path" | "volpath" | "volpathmis" | "prb" | "prbvolpath" => IntegratorDesc {
-            kind: IntegratorKind::Path,
-            max_depth: {
-                let default = if node.plugin.starts_with("prb") {
-                    PRB_DEFAULT_MAX_DEPTH
-                } else {
-                    -1
-                };
-                params.integer_in("max_depth", default, -1, i64::from(i32::MAX))? as i32
-            },
-            rr_depth: params.integer_in("rr_depth", DEFAULT_RR_DEPTH, 1, i64::from(u32::MAX))?
-                as u32,
-            hide_emitters: params.boolean_or("hide_emitters", false)?,
-            skip_null_vertices: node.plugin.contains("volpath"),
-        },
+    let plugin = node.plugin.as_str();
+    let mitsuba_path = matches!(
+        plugin,
+        "path" | "volpath" | "volpathmis" | "prb" | "prbvolpath"
+    );
+    let desc = match plugin {
         "direct" => IntegratorDesc {
-            kind: direct_samples(&mut params, node)?,
+            preset: IntegratorPreset::Auto,
+            direct: Some(direct_samples(&mut params, node)?),
             max_depth: 2,
             rr_depth: DEFAULT_RR_DEPTH as u32,
             hide_emitters: params.boolean_or("hide_emitters", false)?,
             skip_null_vertices: false,
         },
         _ => {
-            return Err(unknown_type(
-                node,
-                &[
-                    "path",
-                    "volpath",
-                    "volpathmis",
-                    "prb",
-                    "prbvolpath",
-                    "direct",
-                    "moment",
-                ],
-            ));
+            let preset = match plugin.parse::<IntegratorPreset>() {
+                _ if mitsuba_path => IntegratorPreset::Auto,
+                Ok(preset) => preset,
+                Err(_) => {
+                    let mut supported = vec![
+                        "path",
+                        "volpath",
+                        "volpathmis",
+                        "prb",
+                        "prbvolpath",
+                        "direct",
+                        "moment",
+                    ];
+                    supported.extend(IntegratorPreset::ALL.map(IntegratorPreset::name));
+                    return Err(unknown_type(node, &supported));
+                }
+            };
+            IntegratorDesc {
+                preset,
+                direct: None,
+                max_depth: {
+                    let default = if plugin.starts_with("prb") {
+                        PRB_DEFAULT_MAX_DEPTH
+                    } else {
+                        -1
+                    };
+                    params.integer_in("max_depth", default, -1, i64::from(i32::MAX))? as i32
+                },
+                rr_depth: params.integer_in("rr_depth", DEFAULT_RR_DEPTH, 1, i64::from(u32::MAX))?
+                    as u32,
+                hide_emitters: params.boolean_or("hide_emitters", false)?,
+                skip_null_vertices: plugin.contains("volpath"),
+            }
         }
     };
     params.finish()?;
@@ -77,7 +92,7 @@ pub(crate) fn integrator(node: &ObjectNode) -> Result<IntegratorDesc> {
 /// The `direct` integrator's sample counts as Mitsuba reads them: `shading_samples` (default 1)
 /// sets both, `emitter_samples` and `bsdf_samples` each (not together with `shading_samples`),
 /// and at least one sample in all.
-fn direct_samples(params: &mut Params, node: &ObjectNode) -> Result<IntegratorKind> {
+fn direct_samples(params: &mut Params, node: &ObjectNode) -> Result<DirectDesc> {
     if params.has("shading_samples") {
         for name in ["emitter_samples", "bsdf_samples"] {
             if params.has(name) {
@@ -95,7 +110,7 @@ fn direct_samples(params: &mut Params, node: &ObjectNode) -> Result<IntegratorKi
             .loc
             .error("the direct integrator needs at least one emitter or BSDF sample"));
     }
-    Ok(IntegratorKind::Direct {
+    Ok(DirectDesc {
         emitter_samples: emitter_samples as u32,
         bsdf_samples: bsdf_samples as u32,
     })

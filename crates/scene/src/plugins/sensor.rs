@@ -3,13 +3,12 @@
 use glam::{DMat3, DMat4};
 
 use super::{unexpected_child, unknown_type};
-use crate::desc::{
-    FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
-};
+use crate::desc::{FilmDesc, FilterDesc, FovAxis, SamplerDesc, SensorDesc, ThinLensDesc};
 use crate::error::Result;
 use crate::limits::{MAX_FILM_PIXELS, MAX_LANCZOS_LOBES, MAX_SAMPLE_COUNT};
 use crate::params::Params;
 use crate::xml::tree::{Child, ObjectNode};
+use sampling::SamplerKind;
 
 /// Largest accepted image side, pixels.
 const MAX_SIDE: i64 = 1 << 16;
@@ -161,8 +160,9 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
             None => default_film(),
         },
         sampler: sampler.unwrap_or(SamplerDesc {
-            kind: SamplerKind::Independent,
+            kind: None,
             sample_count: 4,
+            mitsuba_sample_count: 4,
             seed: 0,
         }),
     })
@@ -393,16 +393,18 @@ fn positive(params: &mut Params, name: &'static str, default: f64) -> Result<f32
     Ok(value as f32)
 }
 
-/// Interprets a `<sampler>` element.
+/// Interprets a `<sampler>` element: the one place where Mitsuba's sampler names meet
+/// Strata's samplers (see [`SamplerDesc::kind`]).
 fn sampler_desc(node: &ObjectNode) -> Result<SamplerDesc> {
     super::no_children(node)?;
     let mut params = Params::new(node);
-    let kind = match node.plugin.as_str() {
-        "independent" => SamplerKind::Independent,
-        "stratified" => SamplerKind::Stratified,
-        "multijitter" => SamplerKind::Multijitter,
-        "ldsampler" => SamplerKind::Ldsampler,
-        "orthogonal" => SamplerKind::Orthogonal,
+    let plugin = node.plugin.as_str();
+    let kind = match plugin {
+        // Mitsuba's default: no intent (see `SamplerDesc::kind`).
+        "independent" => None,
+        "stratified" | "multijitter" | "orthogonal" => Some(SamplerKind::Stratified),
+        // A scrambled (0, 2)-sequence with per-dimension shuffles.
+        "ldsampler" => Some(SamplerKind::Sobol),
         _ => {
             return Err(unknown_type(
                 node,
@@ -416,24 +418,64 @@ fn sampler_desc(node: &ObjectNode) -> Result<SamplerDesc> {
             ));
         }
     };
-    if kind == SamplerKind::Orthogonal {
+    if plugin == "orthogonal" {
         // The array's strength changes only how the dimensions are stratified together.
         params.integer_in("strength", 2, 2, 64)?;
     }
-    if matches!(
-        kind,
-        SamplerKind::Stratified | SamplerKind::Multijitter | SamplerKind::Orthogonal
-    ) && !params.boolean_or("jitter", true)?
-    {
+    if kind == Some(SamplerKind::Stratified) && !params.boolean_or("jitter", true)? {
         return Err(params
             .loc_of("jitter")
             .error("jitter=\"false\" is not supported (it biases the image)"));
     }
+    let sample_count = params.integer_in("sample_count", 4, 1, i64::from(MAX_SAMPLE_COUNT))? as u32;
     let desc = SamplerDesc {
         kind,
-        sample_count: params.integer_in("sample_count", 4, 1, i64::from(MAX_SAMPLE_COUNT))? as u32,
+        sample_count,
+        mitsuba_sample_count: mitsuba_sample_count(plugin, sample_count),
         seed: params.integer_in("seed", 0, 0, i64::from(u32::MAX))? as u32,
     };
     params.finish()?;
     Ok(desc)
+}
+
+/// The samples per pixel Mitsuba's sampler `plugin` renders for `sample_count`: `stratified`
+/// rounds up to a square, `multijitter` to a near-square product, `ldsampler` to a square of a
+/// power of two and `orthogonal` to the square of a prime; `independent` takes it as it is.
+pub(crate) fn mitsuba_sample_count(plugin: &str, sample_count: u32) -> u64 {
+    let spp = u64::from(sample_count);
+    match plugin {
+        "stratified" => {
+            let mut res = 1u64;
+            while res * res < spp {
+                res += 1;
+            }
+            res * res
+        }
+        "multijitter" => {
+            let rows = (spp as f64).sqrt() as u64;
+            let cols = spp.div_ceil(rows);
+            rows * cols
+        }
+        "ldsampler" => {
+            let mut res = 2u64;
+            while res * res < spp {
+                res = (res + 1).next_power_of_two();
+            }
+            res * res
+        }
+        "orthogonal" => {
+            let is_prime = |x: u64| {
+                x >= 2
+                    && (2..)
+                        .take_while(|d| d * d <= x)
+                        .all(|d| !x.is_multiple_of(d))
+            };
+            let mut res = 2u64;
+            while res * res < spp || !is_prime(res) {
+                res += 1;
+            }
+            res * res
+        }
+        _ => spp,
+    }
 }

@@ -170,27 +170,32 @@ impl World {
     }
 
     /// All lights, area lights included.
+    #[inline]
     pub fn lights(&self) -> &[Light] {
         &self.lights
     }
 
     /// Each light's selection weight (parallel to [`Self::lights`]): it multiplies the
     /// probability with which light sampling chooses the light.
+    #[inline]
     pub fn light_weights(&self) -> &[f32] {
         &self.light_weights
     }
 
     /// Index into [`Self::lights`] of the environment emitter, if the scene has one.
+    #[inline]
     pub fn environment(&self) -> Option<u32> {
         self.environment
     }
 
     /// Indices of the lights that no ray can hit (point lights).
+    #[inline]
     pub fn delta_lights(&self) -> &[u32] {
         &self.delta_lights
     }
 
     /// All materials.
+    #[inline]
     pub fn materials(&self) -> &[Bsdf] {
         &self.materials
     }
@@ -322,16 +327,19 @@ impl World {
 
     /// Whether some material chooses its lobe by a random number ([`Bsdf::uses_lobe_choice`]:
     /// a dielectric), so the integrators draw one at every vertex.
+    #[inline]
     pub fn has_lobe_choice(&self) -> bool {
         self.materials.iter().any(Bsdf::uses_lobe_choice)
     }
 
     /// Whether some material has a null lobe ([`Bsdf::has_null_lobe`]: a pass straight through).
+    #[inline]
     pub fn has_null_lobes(&self) -> bool {
         self.materials.iter().any(Bsdf::has_null_lobe)
     }
 
     /// The acceleration structure over all shapes.
+    #[inline]
     pub fn accel(&self) -> &Accel {
         &self.accel
     }
@@ -461,7 +469,7 @@ impl World {
 
     /// True when nothing blocks `ray` for `0 < t < t_max`, told to `tally` as one shadow ray.
     #[inline(always)]
-    pub(crate) fn ray_unoccluded(&self, ray: &Ray, t_max: f32, tally: &mut impl RayTally) -> bool {
+    pub fn ray_unoccluded(&self, ray: &Ray, t_max: f32, tally: &mut impl RayTally) -> bool {
         tally.shadow_ray(ray, t_max);
         !self.accel.occluded(ray, t_max)
     }
@@ -497,7 +505,7 @@ impl World {
 /// trace it with: the segment to its point, or for lights at infinity (the environment,
 /// directional lights) the ray escaping the scene.
 #[inline(always)]
-pub(crate) fn shadow_ray(point: &SpawnPoint, sample: &LightSample) -> (Ray, f32) {
+pub fn shadow_ray(point: &SpawnPoint, sample: &LightSample) -> (Ray, f32) {
     if sample.distance.is_finite() {
         point.spawn_to(sample.p_light, sample.n_light, sample.p_light_error)
     } else {
