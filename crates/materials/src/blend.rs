@@ -1,6 +1,6 @@
 //! Mitsuba's `blendbsdf`: a linear blend of two BSDFs by a constant weight.
 
-use crate::bsdf::{Bsdf, BsdfSample};
+use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::error::MaterialError;
 use crate::rough_conductor::LOBE_WEIGHT_FLOOR;
 use glam::{Vec2, Vec3};
@@ -163,3 +163,39 @@ impl Blend {
 
 /// The largest `f32` below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+impl Model for Blend {
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        Blend::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        Blend::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        Blend::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        let glossy = self.first.is_glossy() || self.second.is_glossy();
+        glossy.then(|| Blend::lobe_weight(self, wo, wi))
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        Blend::sample(self, wo, u_lobe, u_dir)
+    }
+
+    fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        Blend::sample_delta(self, wo, u_lobe)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.first.albedo_hint() * (1.0 - self.weight) + self.second.albedo_hint() * self.weight
+    }
+}

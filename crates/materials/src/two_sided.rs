@@ -1,7 +1,7 @@
 //! Mitsuba's `twosided`: one-sided reflecting BSDFs on both sides of a surface, the same one or
 //! a different one per side.
 
-use crate::bsdf::{Bsdf, BsdfSample};
+use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::error::MaterialError;
 use glam::{Vec2, Vec3};
 
@@ -121,5 +121,44 @@ fn mirror_if(w: Vec3, mirrored: bool) -> Vec3 {
         Vec3::new(w.x, w.y, -w.z)
     } else {
         w
+    }
+}
+
+impl Model for TwoSided {
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        TwoSided::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        TwoSided::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        TwoSided::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        TwoSided::lobe_weight(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        TwoSided::sample(self, wo, u_lobe, u_dir)
+    }
+
+    fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        TwoSided::sample_delta(self, wo, u_lobe)
+    }
+
+    fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Bsdf> {
+        TwoSided::with_diffuse_reflectance(self, reflectance).map(Bsdf::TwoSided)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        0.5 * (self.front().albedo_hint() + self.back().albedo_hint())
     }
 }
