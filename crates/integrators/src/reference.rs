@@ -12,6 +12,7 @@ use crate::uniform_direction::sample_without_importance;
 use crate::{BsdfSlot, CameraRay, RayTally, World};
 use geometry::SpawnPoint;
 use glam::Vec3;
+use materials::BsdfFlags;
 use sampling::Sampler;
 
 /// Paths with an unbounded `max_depth` stop after this many vertices: the reference has no
@@ -79,7 +80,8 @@ pub fn radiance(
         let u_dir = sampler.next_2d();
         // At the last vertex only a pass through a null lobe goes on.
         let last = depth == max_depth;
-        if last && !(settings.skip_null_vertices && surface.bsdf.has_null_lobe()) {
+        if last && !(settings.skip_null_vertices && surface.bsdf.flags().contains(BsdfFlags::NULL))
+        {
             break;
         }
         let point = SpawnPoint::new(surface.hit.p, surface.hit.ng, surface.hit.p_error);

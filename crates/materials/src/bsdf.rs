@@ -4,6 +4,7 @@ use crate::blend::Blend;
 use crate::conductor::Conductor;
 use crate::dielectric::Dielectric;
 use crate::diffuse::Diffuse;
+use crate::flags::BsdfFlags;
 use crate::plastic::Plastic;
 use crate::rough_conductor::RoughConductor;
 use crate::rough_dielectric::RoughDielectric;
@@ -82,6 +83,9 @@ pub(crate) trait Model {
 
     /// [`Bsdf::albedo_hint`].
     fn albedo_hint(&self) -> Vec3;
+
+    /// [`Bsdf::flags`].
+    fn flags(&self) -> BsdfFlags;
 }
 
 /// Declares the closed set of BSDFs once: each line names a variant and the struct it holds
@@ -175,6 +179,14 @@ macro_rules! bsdf_set {
                 }
             }
 
+            /// The kinds of lobes the BSDF has and what its sampling needs ([`BsdfFlags`]).
+            #[inline]
+            pub fn flags(&self) -> BsdfFlags {
+                match self {
+                    $(Self::$variant(b) => Model::flags(b),)*
+                }
+            }
+
             /// A rough RGB albedo for heuristics (Russian roulette, choosing techniques), not for
             /// shading: the diffuse reflectance; for conductors the reflectance at normal
             /// incidence (`specular_reflectance` × Fresnel at cos θ = 1, ignoring microfacet
@@ -217,132 +229,6 @@ bsdf_set! {
 }
 
 impl Bsdf {
-    /// Whether the BSDF has a glossy lobe, whose reflection depends strongly on the direction
-    /// without being a delta (a rough conductor, dielectric or plastic, or a twosided with one on
-    /// either side): where
-    /// [`Self::lobe_weight`] is given.
-    pub fn is_glossy(&self) -> bool {
-        match self {
-            Self::RoughConductor(_) | Self::RoughDielectric(_) | Self::RoughPlastic(_) => true,
-            Self::TwoSided(b) => b.front().is_glossy() || b.back().is_glossy(),
-            Self::Blend(b) => b.first().is_glossy() || b.second().is_glossy(),
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::Dielectric(_)
-            | Self::ThinDielectric(_)
-            | Self::Plastic(_) => false,
-        }
-    }
-
-    /// Whether the BSDF (or a BSDF it holds) has anisotropic roughness, so that it depends on
-    /// how the shading frame is turned about the normal: the frame must then follow the
-    /// surface's parameterisation (its first tangent along ∂p/∂u, as Mitsuba's), which the
-    /// isotropic BSDFs do not need.
-    pub fn is_anisotropic(&self) -> bool {
-        match self {
-            Self::RoughConductor(b) => b.distribution().is_anisotropic(),
-            Self::RoughDielectric(b) => b.distribution().is_anisotropic(),
-            Self::TwoSided(b) => b.front().is_anisotropic() || b.back().is_anisotropic(),
-            Self::Blend(b) => b.first().is_anisotropic() || b.second().is_anisotropic(),
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::Dielectric(_)
-            | Self::ThinDielectric(_)
-            | Self::Plastic(_)
-            | Self::RoughPlastic(_) => false,
-        }
-    }
-    /// Whether the BSDF has delta lobes and lobes with a density at once (a [`Plastic`], or a
-    /// [`TwoSided`] with one on either side): strategies that sample directions without the
-    /// BSDF's help must then reach its delta lobes by [`Self::sample_delta`].
-    #[inline]
-    pub fn is_mixed(&self) -> bool {
-        match self {
-            Self::Plastic(_) => true,
-            Self::TwoSided(b) => b.front().is_mixed() || b.back().is_mixed(),
-            Self::Blend(b) => self.has_delta_lobe() && !b.is_delta(),
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::RoughConductor(_)
-            | Self::Dielectric(_)
-            | Self::RoughDielectric(_)
-            | Self::RoughPlastic(_)
-            | Self::ThinDielectric(_) => false,
-        }
-    }
-
-    /// Whether every lobe is a delta (mirror, smooth dielectric): then `eval` and
-    /// `pdf_solid_angle` are always 0 and light sampling at this surface is pointless. A
-    /// [`TwoSided`] is delta only when both sides are; integrators resolve it to the side a ray
-    /// sees ([`TwoSided::facing`]) before asking.
-    #[inline]
-    pub fn is_delta(&self) -> bool {
-        match self {
-            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => true,
-            Self::Diffuse(_)
-            | Self::RoughConductor(_)
-            | Self::RoughDielectric(_)
-            | Self::RoughPlastic(_)
-            | Self::Plastic(_) => false,
-            Self::TwoSided(b) => b.is_delta(),
-            Self::Blend(b) => b.is_delta(),
-        }
-    }
-
-    /// Whether at least one lobe is a delta, so some samples have `is_delta` set. Equal to
-    /// [`Self::is_delta`] except for a [`TwoSided`] with a delta BSDF on one side only.
-    #[inline]
-    pub fn has_delta_lobe(&self) -> bool {
-        match self {
-            Self::TwoSided(b) => b.front().has_delta_lobe() || b.back().has_delta_lobe(),
-            Self::Blend(b) => b.first().has_delta_lobe() || b.second().has_delta_lobe(),
-            Self::Plastic(_) => true,
-            _ => self.is_delta(),
-        }
-    }
-
-    /// Whether some sample can have `is_null` set ([`BsdfSample::is_null`]): a thin dielectric,
-    /// alone or in a blend.
-    #[inline]
-    pub fn has_null_lobe(&self) -> bool {
-        match self {
-            Self::ThinDielectric(_) => true,
-            Self::TwoSided(b) => b.front().has_null_lobe() || b.back().has_null_lobe(),
-            Self::Blend(b) => b.first().has_null_lobe() || b.second().has_null_lobe(),
-            _ => false,
-        }
-    }
-
-    /// Whether [`Self::sample`] uses its `u_lobe` number (to choose between reflection and
-    /// refraction); the other BSDFs ignore it.
-    #[inline]
-    pub fn uses_lobe_choice(&self) -> bool {
-        match self {
-            Self::Dielectric(_)
-            | Self::RoughDielectric(_)
-            | Self::ThinDielectric(_)
-            | Self::Plastic(_)
-            | Self::RoughPlastic(_) => true,
-            Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
-            Self::TwoSided(b) => b.front().uses_lobe_choice() || b.back().uses_lobe_choice(),
-            Self::Blend(_) => true,
-        }
-    }
-
-    /// Whether light can pass to the other side of the surface (a dielectric, thin, rough or
-    /// smooth).
-    pub fn has_transmission(&self) -> bool {
-        match self {
-            Self::Dielectric(_) | Self::RoughDielectric(_) | Self::ThinDielectric(_) => true,
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::RoughConductor(_)
-            | Self::Plastic(_)
-            | Self::RoughPlastic(_) => false,
-            Self::TwoSided(b) => b.front().has_transmission() || b.back().has_transmission(),
-            Self::Blend(b) => b.first().has_transmission() || b.second().has_transmission(),
-        }
-    }
     /// A [`Blend`] with a texture's values at a hit ([`Blend::with_textures`]: its weight and
     /// either BSDF's diffuse reflectance); `None` for other BSDFs, or when a BSDF given a
     /// reflectance has none.

@@ -1,6 +1,7 @@
 //! Mitsuba's `conductor`: a smooth metal, a perfect mirror weighted by the conductor Fresnel term.
 
 use crate::bsdf::{BsdfSample, Model};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{ComplexIor, fresnel_conductor, reflect};
 use glam::{Vec2, Vec3};
 
@@ -45,6 +46,11 @@ impl Conductor {
 }
 
 impl Model for Conductor {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA
+    }
+
     #[inline]
     fn sample(&self, wo: Vec3, _u_lobe: f32, _u_dir: Vec2) -> Option<BsdfSample> {
         Conductor::sample(self, wo)

@@ -3,6 +3,7 @@
 
 use crate::bsdf::{BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect, refract};
 use glam::{Vec2, Vec3};
 
@@ -85,6 +86,11 @@ impl Dielectric {
 }
 
 impl Model for Dielectric {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA | BsdfFlags::TRANSMISSION | BsdfFlags::LOBE_CHOICE
+    }
+
     #[inline]
     fn sample(&self, wo: Vec3, u_lobe: f32, _u_dir: Vec2) -> Option<BsdfSample> {
         Dielectric::sample(self, wo, u_lobe)

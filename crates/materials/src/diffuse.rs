@@ -1,6 +1,7 @@
 //! Mitsuba's `diffuse`: an ideal one-sided Lambertian reflector.
 
 use crate::bsdf::{Bsdf, BsdfSample, Model};
+use crate::flags::BsdfFlags;
 use glam::{Vec2, Vec3};
 use sampling::warp::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use std::f32::consts::FRAC_1_PI;
@@ -68,6 +69,11 @@ impl Diffuse {
 }
 
 impl Model for Diffuse {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DIFFUSE
+    }
+
     #[inline]
     fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         Diffuse::eval(self, wo, wi)

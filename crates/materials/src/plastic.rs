@@ -4,6 +4,7 @@
 
 use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{diffuse_fresnel_reflectance, fresnel_dielectric, reflect};
 use glam::{Vec2, Vec3};
 use sampling::warp::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
@@ -221,6 +222,11 @@ impl Coating {
 }
 
 impl Model for Plastic {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DIFFUSE | BsdfFlags::DELTA | BsdfFlags::MIXED | BsdfFlags::LOBE_CHOICE
+    }
+
     #[inline]
     fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         Plastic::eval(self, wo, wi)

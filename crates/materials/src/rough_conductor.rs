@@ -2,6 +2,7 @@
 //! conductor Fresnel term, sampled through the normals visible from `wo`.
 
 use crate::bsdf::{BsdfSample, Model};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{ComplexIor, fresnel_conductor, reflect_about};
 use crate::microfacet::Microfacet;
 use glam::{Vec2, Vec3};
@@ -128,6 +129,16 @@ impl RoughConductor {
 }
 
 impl Model for RoughConductor {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        let anisotropic = if self.distribution().is_anisotropic() {
+            BsdfFlags::ANISOTROPIC
+        } else {
+            BsdfFlags::EMPTY
+        };
+        BsdfFlags::GLOSSY | anisotropic
+    }
+
     #[inline]
     fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         RoughConductor::eval(self, wo, wi)

@@ -4,6 +4,7 @@
 
 use crate::bsdf::{BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect_about, refract_about};
 use crate::microfacet::Microfacet;
 use crate::rough_conductor::LOBE_WEIGHT_FLOOR;
@@ -200,6 +201,16 @@ impl RoughDielectric {
 }
 
 impl Model for RoughDielectric {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        let anisotropic = if self.distribution().is_anisotropic() {
+            BsdfFlags::ANISOTROPIC
+        } else {
+            BsdfFlags::EMPTY
+        };
+        BsdfFlags::GLOSSY | BsdfFlags::TRANSMISSION | BsdfFlags::LOBE_CHOICE | anisotropic
+    }
+
     #[inline]
     fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         RoughDielectric::eval(self, wo, wi)

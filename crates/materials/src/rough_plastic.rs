@@ -3,6 +3,7 @@
 
 use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect_about};
 use crate::microfacet::Microfacet;
 use crate::plastic::{Coating, specular_sampling_weight};
@@ -228,6 +229,11 @@ impl RoughPlastic {
 }
 
 impl Model for RoughPlastic {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DIFFUSE | BsdfFlags::GLOSSY | BsdfFlags::LOBE_CHOICE
+    }
+
     #[inline]
     fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         RoughPlastic::eval(self, wo, wi)

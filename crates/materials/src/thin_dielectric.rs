@@ -4,6 +4,7 @@
 
 use crate::bsdf::{BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect};
 use glam::{Vec2, Vec3};
 
@@ -82,6 +83,11 @@ impl ThinDielectric {
 }
 
 impl Model for ThinDielectric {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA | BsdfFlags::NULL | BsdfFlags::TRANSMISSION | BsdfFlags::LOBE_CHOICE
+    }
+
     #[inline]
     fn sample(&self, wo: Vec3, u_lobe: f32, _u_dir: Vec2) -> Option<BsdfSample> {
         ThinDielectric::sample(self, wo, u_lobe)
