@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 use lights::{Light, LightSample, LightSelection, LightSelector};
-use materials::Bsdf;
+use materials::{Bsdf, BsdfFlags};
 use sampling::reservoir::Reservoir;
 use world::SurfaceHit;
 
@@ -146,7 +146,7 @@ fn resample(
     let mut u_reservoir = u_choice.y;
     let mut reservoir = Reservoir::new();
     let count = count.max(1);
-    let glossy = surface.bsdf.is_glossy();
+    let glossy = surface.bsdf.flags().contains(BsdfFlags::GLOSSY);
     for k in 0..count {
         let (index, pmf) = source.select(stratum(u_choice.x, k, count));
         let target = selection_target(&lights[index], surface, wo, glossy);

@@ -125,7 +125,7 @@ impl LightTracer {
                 Vec2::ZERO
             };
             if vertex > 1
-                && !surface.bsdf.is_delta()
+                && !surface.bsdf.flags().is_delta()
                 && let Some(camera) = connect(surface.hit.p, u_lens)
             {
                 let weight = emitted_weight * throughput;

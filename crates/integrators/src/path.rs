@@ -25,7 +25,7 @@ use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf}
 use geometry::{Ray, SpawnPoint};
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
-use materials::Bsdf;
+use materials::{Bsdf, BsdfFlags};
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
 use world::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World, shadow_ray};
@@ -248,7 +248,9 @@ impl PathIntegrator {
             }
             // At the last vertex only a pass through a null lobe goes on.
             let last = depth == max_depth;
-            if last && !(settings.skip_null_vertices && surface.bsdf.has_null_lobe()) {
+            if last
+                && !(settings.skip_null_vertices && surface.bsdf.flags().contains(BsdfFlags::NULL))
+            {
                 break;
             }
             let wo = surface.frame.to_local(-ray.dir);
@@ -283,7 +285,7 @@ impl PathIntegrator {
                             radiance: throughput * light.radiance,
                             ..light
                         });
-                } else if !surface.bsdf.is_delta() {
+                } else if !surface.bsdf.flags().is_delta() {
                     radiance += throughput * delta_lights(world, surface, &point, wo, counters);
                 }
             }
@@ -376,7 +378,7 @@ impl PathIntegrator {
     ) -> Option<ShadowedLight> {
         let u_choice = self.light_numbers(sampler);
         let u_point = sampler.next_2d();
-        if surface.bsdf.is_delta() {
+        if surface.bsdf.flags().is_delta() {
             return None;
         }
         self.light_sample(world, surface, point, wo, u_choice, u_point, ONE_EACH)
@@ -406,14 +408,14 @@ impl PathIntegrator {
             for _ in 0..samples.light {
                 let u_choice = self.light_numbers(sampler);
                 let u_point = sampler.next_2d();
-                if !surface.bsdf.is_delta()
+                if !surface.bsdf.flags().is_delta()
                     && let Some(light) =
                         self.light_sample(world, surface, point, wo, u_choice, u_point, counts)
                 {
                     radiance += light.traced(world, counters) / counts.light;
                 }
             }
-        } else if samples.light > 0 && !surface.bsdf.is_delta() {
+        } else if samples.light > 0 && !surface.bsdf.flags().is_delta() {
             radiance += delta_lights(world, surface, point, wo, counters);
         }
         for _ in 0..samples.bsdf {

@@ -11,6 +11,7 @@ use crate::settings::DirectSamples;
 use crate::uniform_direction::sample_without_importance;
 use geometry::SpawnPoint;
 use glam::Vec3;
+use materials::BsdfFlags;
 use sampling::Sampler;
 use world::{BsdfSlot, CameraRay, RayTally, World};
 
@@ -79,7 +80,8 @@ pub fn radiance(
         let u_dir = sampler.next_2d();
         // At the last vertex only a pass through a null lobe goes on.
         let last = depth == max_depth;
-        if last && !(settings.skip_null_vertices && surface.bsdf.has_null_lobe()) {
+        if last && !(settings.skip_null_vertices && surface.bsdf.flags().contains(BsdfFlags::NULL))
+        {
             break;
         }
         let point = SpawnPoint::new(surface.hit.p, surface.hit.ng, surface.hit.p_error);

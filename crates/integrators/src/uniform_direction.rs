@@ -3,13 +3,13 @@
 
 use crate::next_direction::NextDirection;
 use glam::{Vec2, Vec3};
-use materials::Bsdf;
+use materials::{Bsdf, BsdfFlags};
 use sampling::warp::{
     sample_uniform_hemisphere, sample_uniform_sphere, uniform_hemisphere_pdf, uniform_sphere_pdf,
 };
 
 /// The probability with which [`sample_without_importance`] takes a mixed BSDF's delta lobes
-/// rather than a uniform direction ([`Bsdf::is_mixed`]: a plastic's mirror and its diffuse
+/// rather than a uniform direction ([`BsdfFlags::MIXED`]: a plastic's mirror and its diffuse
 /// base), which no uniform direction can find.
 const DELTA_LOBE_SHARE: f32 = 0.5;
 
@@ -24,10 +24,10 @@ pub fn sample_without_importance(
     u_lobe: f32,
     u_dir: Vec2,
 ) -> Option<NextDirection> {
-    if bsdf.is_delta() {
+    if bsdf.flags().is_delta() {
         return bsdf.sample(wo, u_lobe, u_dir).map(NextDirection::from);
     }
-    let uniform_share = if bsdf.is_mixed() {
+    let uniform_share = if bsdf.flags().contains(BsdfFlags::MIXED) {
         if u_lobe < DELTA_LOBE_SHARE {
             let mut step = NextDirection::from(bsdf.sample_delta(wo, u_lobe / DELTA_LOBE_SHARE)?);
             step.weight /= DELTA_LOBE_SHARE;
@@ -55,7 +55,7 @@ pub fn sample_without_importance(
 /// transmits), with its density per steradian.
 #[inline]
 fn sample_uniform_direction(bsdf: &Bsdf, wo: Vec3, u: Vec2) -> (Vec3, f32) {
-    if bsdf.has_transmission() {
+    if bsdf.flags().contains(BsdfFlags::TRANSMISSION) {
         return (sample_uniform_sphere(u), uniform_sphere_pdf());
     }
     let mut wi = sample_uniform_hemisphere(u);
@@ -69,12 +69,12 @@ fn sample_uniform_direction(bsdf: &Bsdf, wo: Vec3, u: Vec2) -> (Vec3, f32) {
 /// direction `wi` from `wo`.
 #[inline]
 pub fn uniform_direction_pdf(bsdf: &Bsdf, wo: Vec3, wi: Vec3) -> f32 {
-    let uniform_share = if bsdf.is_mixed() {
+    let uniform_share = if bsdf.flags().contains(BsdfFlags::MIXED) {
         1.0 - DELTA_LOBE_SHARE
     } else {
         1.0
     };
-    let pdf = if bsdf.has_transmission() {
+    let pdf = if bsdf.flags().contains(BsdfFlags::TRANSMISSION) {
         uniform_sphere_pdf()
     } else if wo.z * wi.z > 0.0 {
         uniform_hemisphere_pdf()

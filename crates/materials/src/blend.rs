@@ -1,7 +1,8 @@
 //! Mitsuba's `blendbsdf`: a linear blend of two BSDFs by a constant weight.
 
-use crate::bsdf::{Bsdf, BsdfSample};
+use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::error::MaterialError;
+use crate::flags::BsdfFlags;
 use crate::rough_conductor::LOBE_WEIGHT_FLOOR;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
@@ -19,7 +20,9 @@ pub struct Blend {
     first: Arc<Bsdf>,
     second: Arc<Bsdf>,
     weight: f32,
-    is_delta: bool,
+    /// The union of both BSDFs' flags, with [`BsdfFlags::MIXED`] when the blend has delta and
+    /// density lobes and [`BsdfFlags::LOBE_CHOICE`] always (it chooses between its BSDFs).
+    flags: BsdfFlags,
 }
 
 impl Blend {
@@ -29,7 +32,7 @@ impl Blend {
             return Err(MaterialError::InvalidBlendWeight { value: weight });
         }
         Ok(Self {
-            is_delta: first.is_delta() && second.is_delta(),
+            flags: blend_flags(first.flags() | second.flags()),
             first: Arc::new(first),
             second: Arc::new(second),
             weight,
@@ -54,7 +57,7 @@ impl Blend {
             first: part(&self.first, reflectances[0])?,
             second: part(&self.second, reflectances[1])?,
             weight: weight.map_or(self.weight, |w| w.clamp(0.0, 1.0)),
-            is_delta: self.is_delta,
+            flags: self.flags,
         })
     }
 
@@ -71,12 +74,6 @@ impl Blend {
     /// The weight of the second BSDF.
     pub fn weight(&self) -> f32 {
         self.weight
-    }
-
-    /// Whether both BSDFs are deltas.
-    #[inline]
-    pub fn is_delta(&self) -> bool {
-        self.is_delta
     }
 
     /// (1 − w) f₀ + w f₁ per steradian.
@@ -144,7 +141,8 @@ impl Blend {
     /// The delta lobes alone ([`Bsdf::sample_delta`]): of the BSDF that has them, or of the one
     /// `u_lobe` chooses when both have, weighted by its share of the blend.
     pub fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
-        let (first, second) = (self.first.has_delta_lobe(), self.second.has_delta_lobe());
+        let has_delta = |b: &Bsdf| b.flags().contains(BsdfFlags::DELTA);
+        let (first, second) = (has_delta(&self.first), has_delta(&self.second));
         let (chosen, share, probability, u_rest) = match (first, second) {
             (true, true) => {
                 let (chosen, probability, u_rest) = self.choose(u_lobe);
@@ -161,5 +159,57 @@ impl Blend {
     }
 }
 
+/// A blend's flags from the union of its BSDFs' `parts`: mixed when it has delta and density
+/// lobes, and always choosing a lobe.
+fn blend_flags(parts: BsdfFlags) -> BsdfFlags {
+    let mixed = if parts.contains(BsdfFlags::DELTA) && !parts.is_delta() {
+        BsdfFlags::MIXED
+    } else {
+        BsdfFlags::EMPTY
+    };
+    parts | mixed | BsdfFlags::LOBE_CHOICE
+}
+
 /// The largest `f32` below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+impl Model for Blend {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        self.flags
+    }
+
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        Blend::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        Blend::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        Blend::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        let glossy = self.flags.contains(BsdfFlags::GLOSSY);
+        glossy.then(|| Blend::lobe_weight(self, wo, wi))
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        Blend::sample(self, wo, u_lobe, u_dir)
+    }
+
+    fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        Blend::sample_delta(self, wo, u_lobe)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.first.albedo_hint() * (1.0 - self.weight) + self.second.albedo_hint() * self.weight
+    }
+}

@@ -4,6 +4,7 @@ use crate::blend::Blend;
 use crate::conductor::Conductor;
 use crate::dielectric::Dielectric;
 use crate::diffuse::Diffuse;
+use crate::flags::BsdfFlags;
 use crate::plastic::Plastic;
 use crate::rough_conductor::RoughConductor;
 use crate::rough_dielectric::RoughDielectric;
@@ -39,9 +40,169 @@ pub struct BsdfSample {
     pub eta: f32,
 }
 
-/// Any of Strata's BSDFs, in the local shading frame (see the crate documentation).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Bsdf {
+/// What each BSDF of the set provides, with one signature for all, so that [`Bsdf`]'s methods
+/// can forward to it (see `bsdf_set!`). The defaults fit a BSDF made of delta lobes only, which
+/// `eval` and `pdf_solid_angle` never see, and one without a diffuse albedo to replace.
+pub(crate) trait Model {
+    /// [`Bsdf::eval`].
+    #[inline]
+    fn eval(&self, _wo: Vec3, _wi: Vec3) -> Vec3 {
+        Vec3::ZERO
+    }
+
+    /// [`Bsdf::pdf_solid_angle`].
+    #[inline]
+    fn pdf_solid_angle(&self, _wo: Vec3, _wi: Vec3) -> f32 {
+        0.0
+    }
+
+    /// [`Bsdf::eval_with_pdf`].
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        (self.eval(wo, wi), self.pdf_solid_angle(wo, wi))
+    }
+
+    /// [`Bsdf::lobe_weight`].
+    #[inline]
+    fn lobe_weight(&self, _wo: Vec3, _wi: Vec3) -> Option<f32> {
+        None
+    }
+
+    /// [`Bsdf::sample`].
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample>;
+
+    /// [`Bsdf::sample_delta`].
+    fn sample_delta(&self, _wo: Vec3, _u_lobe: f32) -> Option<BsdfSample> {
+        None
+    }
+
+    /// [`Bsdf::with_diffuse_reflectance`].
+    fn with_diffuse_reflectance(&self, _reflectance: Vec3) -> Option<Bsdf> {
+        None
+    }
+
+    /// [`Bsdf::albedo_hint`].
+    fn albedo_hint(&self) -> Vec3;
+
+    /// [`Bsdf::flags`].
+    fn flags(&self) -> BsdfFlags;
+}
+
+/// Declares the closed set of BSDFs once: each line names a variant and the struct it holds
+/// (which implements [`Model`] in its own file). Generates the [`Bsdf`] enum, a `From` for each
+/// struct, and [`Bsdf`]'s methods that forward to the variant's [`Model`].
+macro_rules! bsdf_set {
+    ($($(#[$doc:meta])* $variant:ident($ty:ident),)*) => {
+        /// Any of Strata's BSDFs, in the local shading frame (see the crate documentation).
+        #[derive(Clone, Debug, PartialEq)]
+        pub enum Bsdf {
+            $($(#[$doc])* $variant($ty),)*
+        }
+
+        $(impl From<$ty> for Bsdf {
+            fn from(b: $ty) -> Self {
+                Self::$variant(b)
+            }
+        })*
+
+        impl Bsdf {
+            /// f(wo, wi) per steradian, RGB, without the cosine factor; 0 for delta lobes.
+            #[inline]
+            pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+                match self {
+                    $(Self::$variant(b) => Model::eval(b, wo, wi),)*
+                }
+            }
+
+            /// Density per steradian with which [`Self::sample`] produces `wi` from `wo`; 0 for
+            /// delta lobes (whose samples have no density).
+            #[inline]
+            pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+                match self {
+                    $(Self::$variant(b) => Model::pdf_solid_angle(b, wo, wi),)*
+                }
+            }
+
+            /// [`Self::eval`] and [`Self::pdf_solid_angle`] in one call, which shares the work the
+            /// two have in common (a rough conductor's half vector and D): the same values as the
+            /// two calls.
+            #[inline]
+            pub fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+                match self {
+                    $(Self::$variant(b) => Model::eval_with_pdf(b, wo, wi),)*
+                }
+            }
+
+            /// For choosing among lights by resampling: a cheap positive estimate of f · cos θi
+            /// towards `wi`, sr⁻¹ (a rough conductor's [`RoughConductor::lobe_weight`]), or `None`
+            /// for BSDFs whose reflection varies little with the direction (diffuse) or has no
+            /// density (delta lobes), where the light's irradiance alone should decide.
+            #[inline]
+            pub fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+                match self {
+                    $(Self::$variant(b) => Model::lobe_weight(b, wo, wi),)*
+                }
+            }
+
+            /// Importance-samples a direction `wi` for `wo`. `u_lobe` ∈ [0, 1) chooses among lobes
+            /// (the dielectric's reflection or refraction), `u_dir` ∈ [0, 1)² the direction within
+            /// the lobe. `None` when there is no valid direction (e.g. `wo` behind a one-sided
+            /// BSDF, or a rough reflection that lands below the surface), which the estimator
+            /// counts as zero.
+            #[inline]
+            pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+                match self {
+                    $(Self::$variant(b) => Model::sample(b, wo, u_lobe, u_dir),)*
+                }
+            }
+
+            /// Samples the delta lobes alone, for strategies that find the other lobes by
+            /// directions of their own: as [`Self::sample`] for a BSDF whose lobes are all deltas,
+            /// the specular lobe of a [`Plastic`] with probability 1 (its weight
+            /// F · `specular_reflectance`), `None` for a BSDF without delta lobes. A [`TwoSided`]
+            /// samples the side `wo` sees.
+            pub fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+                match self {
+                    $(Self::$variant(b) => Model::sample_delta(b, wo, u_lobe),)*
+                }
+            }
+
+            /// This BSDF with its diffuse albedo replaced by the RGB `reflectance` (a texture's
+            /// value at a hit): a [`Diffuse`] with that reflectance, a [`Plastic`] or
+            /// [`RoughPlastic`] with that base ([`Plastic::with_diffuse_reflectance`]), a
+            /// [`TwoSided`] with both sides so (which allocates them; integrators resolve a
+            /// surface's own two-sided BSDF to its side first); `None` for BSDFs that have no
+            /// diffuse albedo to replace.
+            pub fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Self> {
+                match self {
+                    $(Self::$variant(b) => Model::with_diffuse_reflectance(b, reflectance),)*
+                }
+            }
+
+            /// The kinds of lobes the BSDF has and what its sampling needs ([`BsdfFlags`]).
+            #[inline]
+            pub fn flags(&self) -> BsdfFlags {
+                match self {
+                    $(Self::$variant(b) => Model::flags(b),)*
+                }
+            }
+
+            /// A rough RGB albedo for heuristics (Russian roulette, choosing techniques), not for
+            /// shading: the diffuse reflectance; for conductors the reflectance at normal
+            /// incidence (`specular_reflectance` × Fresnel at cos θ = 1, ignoring microfacet
+            /// shadowing); for a dielectric F₀ · `specular_reflectance` + (1 − F₀) ·
+            /// `specular_transmittance`; for a plastic F₀ · `specular_reflectance` + (1 − F₀) · its
+            /// base seen through the coating; for a [`TwoSided`] the mean of its two sides.
+            pub fn albedo_hint(&self) -> Vec3 {
+                match self {
+                    $(Self::$variant(b) => Model::albedo_hint(b),)*
+                }
+            }
+        }
+    };
+}
+
+bsdf_set! {
     /// Lambertian reflection (Mitsuba's `diffuse`).
     Diffuse(Diffuse),
     /// Smooth metal, a perfect mirror (Mitsuba's `conductor`).
@@ -68,257 +229,6 @@ pub enum Bsdf {
 }
 
 impl Bsdf {
-    /// f(wo, wi) per steradian, RGB, without the cosine factor; 0 for delta lobes.
-    #[inline]
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        match self {
-            Self::Diffuse(b) => b.eval(wo, wi),
-            Self::RoughConductor(b) => b.eval(wo, wi),
-            Self::Plastic(b) => b.eval(wo, wi),
-            Self::RoughDielectric(b) => b.eval(wo, wi),
-            Self::RoughPlastic(b) => b.eval(wo, wi),
-            Self::TwoSided(b) => b.eval(wo, wi),
-            Self::Blend(b) => b.eval(wo, wi),
-            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => Vec3::ZERO,
-        }
-    }
-
-    /// Density per steradian with which [`Self::sample`] produces `wi` from `wo`; 0 for delta
-    /// lobes (whose samples have no density).
-    #[inline]
-    pub fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
-        match self {
-            Self::Diffuse(b) => b.pdf_solid_angle(wo, wi),
-            Self::RoughConductor(b) => b.pdf_solid_angle(wo, wi),
-            Self::Plastic(b) => b.pdf_solid_angle(wo, wi),
-            Self::RoughDielectric(b) => b.pdf_solid_angle(wo, wi),
-            Self::RoughPlastic(b) => b.pdf_solid_angle(wo, wi),
-            Self::TwoSided(b) => b.pdf_solid_angle(wo, wi),
-            Self::Blend(b) => b.pdf_solid_angle(wo, wi),
-            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => 0.0,
-        }
-    }
-
-    /// [`Self::eval`] and [`Self::pdf_solid_angle`] in one call, which shares the work the two
-    /// have in common (a rough conductor's half vector and D): the same values as the two calls.
-    #[inline]
-    pub fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        match self {
-            Self::Diffuse(b) => b.eval_with_pdf(wo, wi),
-            Self::RoughConductor(b) => b.eval_with_pdf(wo, wi),
-            Self::Plastic(b) => b.eval_with_pdf(wo, wi),
-            Self::RoughDielectric(b) => b.eval_with_pdf(wo, wi),
-            Self::RoughPlastic(b) => b.eval_with_pdf(wo, wi),
-            Self::TwoSided(b) => b.eval_with_pdf(wo, wi),
-            Self::Blend(b) => b.eval_with_pdf(wo, wi),
-            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => (Vec3::ZERO, 0.0),
-        }
-    }
-
-    /// Whether the BSDF has a glossy lobe, whose reflection depends strongly on the direction
-    /// without being a delta (a rough conductor, dielectric or plastic, or a twosided with one on
-    /// either side): where
-    /// [`Self::lobe_weight`] is given.
-    pub fn is_glossy(&self) -> bool {
-        match self {
-            Self::RoughConductor(_) | Self::RoughDielectric(_) | Self::RoughPlastic(_) => true,
-            Self::TwoSided(b) => b.front().is_glossy() || b.back().is_glossy(),
-            Self::Blend(b) => b.first().is_glossy() || b.second().is_glossy(),
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::Dielectric(_)
-            | Self::ThinDielectric(_)
-            | Self::Plastic(_) => false,
-        }
-    }
-
-    /// Whether the BSDF (or a BSDF it holds) has anisotropic roughness, so that it depends on
-    /// how the shading frame is turned about the normal: the frame must then follow the
-    /// surface's parameterisation (its first tangent along ∂p/∂u, as Mitsuba's), which the
-    /// isotropic BSDFs do not need.
-    pub fn is_anisotropic(&self) -> bool {
-        match self {
-            Self::RoughConductor(b) => b.distribution().is_anisotropic(),
-            Self::RoughDielectric(b) => b.distribution().is_anisotropic(),
-            Self::TwoSided(b) => b.front().is_anisotropic() || b.back().is_anisotropic(),
-            Self::Blend(b) => b.first().is_anisotropic() || b.second().is_anisotropic(),
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::Dielectric(_)
-            | Self::ThinDielectric(_)
-            | Self::Plastic(_)
-            | Self::RoughPlastic(_) => false,
-        }
-    }
-
-    /// For choosing among lights by resampling: a cheap positive estimate of f · cos θi towards
-    /// `wi`, sr⁻¹ (a rough conductor's [`RoughConductor::lobe_weight`]), or `None` for BSDFs
-    /// whose reflection varies little with the direction (diffuse) or has no density (delta
-    /// lobes), where the light's irradiance alone should decide.
-    #[inline]
-    pub fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
-        match self {
-            Self::RoughConductor(b) => Some(b.lobe_weight(wo, wi)),
-            Self::RoughDielectric(b) => Some(b.lobe_weight(wo, wi)),
-            Self::RoughPlastic(b) => Some(b.lobe_weight(wo, wi)),
-            Self::TwoSided(b) => b.lobe_weight(wo, wi),
-            Self::Blend(b) => self.is_glossy().then(|| b.lobe_weight(wo, wi)),
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::Dielectric(_)
-            | Self::ThinDielectric(_)
-            | Self::Plastic(_) => None,
-        }
-    }
-
-    /// Importance-samples a direction `wi` for `wo`. `u_lobe` ∈ [0, 1) chooses among lobes (the
-    /// dielectric's reflection or refraction), `u_dir` ∈ [0, 1)² the direction within the lobe.
-    /// `None` when there is no valid direction (e.g. `wo` behind a one-sided BSDF, or a rough
-    /// reflection that lands below the surface), which the estimator counts as zero.
-    #[inline]
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
-        match self {
-            Self::Diffuse(b) => b.sample(wo, u_dir),
-            Self::Conductor(b) => b.sample(wo),
-            Self::RoughConductor(b) => b.sample(wo, u_dir),
-            Self::Dielectric(b) => b.sample(wo, u_lobe),
-            Self::ThinDielectric(b) => b.sample(wo, u_lobe),
-            Self::Plastic(b) => b.sample(wo, u_lobe, u_dir),
-            Self::RoughDielectric(b) => b.sample(wo, u_lobe, u_dir),
-            Self::RoughPlastic(b) => b.sample(wo, u_lobe, u_dir),
-            Self::TwoSided(b) => b.sample(wo, u_lobe, u_dir),
-            Self::Blend(b) => b.sample(wo, u_lobe, u_dir),
-        }
-    }
-
-    /// Samples the delta lobes alone, for strategies that find the other lobes by directions
-    /// of their own: as [`Self::sample`] for a BSDF whose lobes are all deltas, the specular
-    /// lobe of a [`Plastic`] with probability 1 (its weight F · `specular_reflectance`), `None`
-    /// for a BSDF without delta lobes. A [`TwoSided`] samples the side `wo` sees.
-    pub fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
-        match self {
-            Self::Conductor(b) => b.sample(wo),
-            Self::Dielectric(b) => b.sample(wo, u_lobe),
-            Self::ThinDielectric(b) => b.sample(wo, u_lobe),
-            Self::Plastic(b) => b.sample_specular(wo),
-            Self::TwoSided(b) => b.sample_delta(wo, u_lobe),
-            Self::Blend(b) => b.sample_delta(wo, u_lobe),
-            Self::Diffuse(_)
-            | Self::RoughConductor(_)
-            | Self::RoughDielectric(_)
-            | Self::RoughPlastic(_) => None,
-        }
-    }
-
-    /// Whether the BSDF has delta lobes and lobes with a density at once (a [`Plastic`], or a
-    /// [`TwoSided`] with one on either side): strategies that sample directions without the
-    /// BSDF's help must then reach its delta lobes by [`Self::sample_delta`].
-    #[inline]
-    pub fn is_mixed(&self) -> bool {
-        match self {
-            Self::Plastic(_) => true,
-            Self::TwoSided(b) => b.front().is_mixed() || b.back().is_mixed(),
-            Self::Blend(b) => self.has_delta_lobe() && !b.is_delta(),
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::RoughConductor(_)
-            | Self::Dielectric(_)
-            | Self::RoughDielectric(_)
-            | Self::RoughPlastic(_)
-            | Self::ThinDielectric(_) => false,
-        }
-    }
-
-    /// Whether every lobe is a delta (mirror, smooth dielectric): then `eval` and
-    /// `pdf_solid_angle` are always 0 and light sampling at this surface is pointless. A
-    /// [`TwoSided`] is delta only when both sides are; integrators resolve it to the side a ray
-    /// sees ([`TwoSided::facing`]) before asking.
-    #[inline]
-    pub fn is_delta(&self) -> bool {
-        match self {
-            Self::Conductor(_) | Self::Dielectric(_) | Self::ThinDielectric(_) => true,
-            Self::Diffuse(_)
-            | Self::RoughConductor(_)
-            | Self::RoughDielectric(_)
-            | Self::RoughPlastic(_)
-            | Self::Plastic(_) => false,
-            Self::TwoSided(b) => b.is_delta(),
-            Self::Blend(b) => b.is_delta(),
-        }
-    }
-
-    /// Whether at least one lobe is a delta, so some samples have `is_delta` set. Equal to
-    /// [`Self::is_delta`] except for a [`TwoSided`] with a delta BSDF on one side only.
-    #[inline]
-    pub fn has_delta_lobe(&self) -> bool {
-        match self {
-            Self::TwoSided(b) => b.front().has_delta_lobe() || b.back().has_delta_lobe(),
-            Self::Blend(b) => b.first().has_delta_lobe() || b.second().has_delta_lobe(),
-            Self::Plastic(_) => true,
-            _ => self.is_delta(),
-        }
-    }
-
-    /// Whether some sample can have `is_null` set ([`BsdfSample::is_null`]): a thin dielectric,
-    /// alone or in a blend.
-    #[inline]
-    pub fn has_null_lobe(&self) -> bool {
-        match self {
-            Self::ThinDielectric(_) => true,
-            Self::TwoSided(b) => b.front().has_null_lobe() || b.back().has_null_lobe(),
-            Self::Blend(b) => b.first().has_null_lobe() || b.second().has_null_lobe(),
-            _ => false,
-        }
-    }
-
-    /// Whether [`Self::sample`] uses its `u_lobe` number (to choose between reflection and
-    /// refraction); the other BSDFs ignore it.
-    #[inline]
-    pub fn uses_lobe_choice(&self) -> bool {
-        match self {
-            Self::Dielectric(_)
-            | Self::RoughDielectric(_)
-            | Self::ThinDielectric(_)
-            | Self::Plastic(_)
-            | Self::RoughPlastic(_) => true,
-            Self::Diffuse(_) | Self::Conductor(_) | Self::RoughConductor(_) => false,
-            Self::TwoSided(b) => b.front().uses_lobe_choice() || b.back().uses_lobe_choice(),
-            Self::Blend(_) => true,
-        }
-    }
-
-    /// Whether light can pass to the other side of the surface (a dielectric, thin, rough or
-    /// smooth).
-    pub fn has_transmission(&self) -> bool {
-        match self {
-            Self::Dielectric(_) | Self::RoughDielectric(_) | Self::ThinDielectric(_) => true,
-            Self::Diffuse(_)
-            | Self::Conductor(_)
-            | Self::RoughConductor(_)
-            | Self::Plastic(_)
-            | Self::RoughPlastic(_) => false,
-            Self::TwoSided(b) => b.front().has_transmission() || b.back().has_transmission(),
-            Self::Blend(b) => b.first().has_transmission() || b.second().has_transmission(),
-        }
-    }
-
-    /// This BSDF with its diffuse albedo replaced by the RGB `reflectance` (a texture's value at
-    /// a hit): a [`Diffuse`] with that reflectance, a [`Plastic`] or [`RoughPlastic`] with that
-    /// base ([`Plastic::with_diffuse_reflectance`]), a [`TwoSided`] with both sides so (which
-    /// allocates them; integrators resolve a surface's own two-sided BSDF to its side first);
-    /// `None` for BSDFs that have no diffuse albedo to replace.
-    pub fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Self> {
-        match self {
-            Self::Diffuse(_) => Some(Self::Diffuse(Diffuse::new(reflectance))),
-            Self::Plastic(b) => Some(Self::Plastic(b.with_diffuse_reflectance(reflectance))),
-            Self::RoughPlastic(b) => {
-                Some(Self::RoughPlastic(b.with_diffuse_reflectance(reflectance)))
-            }
-            Self::TwoSided(b) => b.with_diffuse_reflectance(reflectance).map(Self::TwoSided),
-            _ => None,
-        }
-    }
-
     /// A [`Blend`] with a texture's values at a hit ([`Blend::with_textures`]: its weight and
     /// either BSDF's diffuse reflectance); `None` for other BSDFs, or when a BSDF given a
     /// reflectance has none.
@@ -331,88 +241,5 @@ impl Bsdf {
             Self::Blend(b) => b.with_textures(weight, reflectances).map(Self::Blend),
             _ => None,
         }
-    }
-
-    /// A rough RGB albedo for heuristics (Russian roulette, choosing techniques), not for
-    /// shading: the diffuse reflectance; for conductors the reflectance at normal incidence
-    /// (`specular_reflectance` × Fresnel at cos θ = 1, ignoring microfacet shadowing); for a
-    /// dielectric F₀ · `specular_reflectance` + (1 − F₀) · `specular_transmittance`; for a plastic
-    /// F₀ · `specular_reflectance` + (1 − F₀) · its base seen through the coating; for a
-    /// [`TwoSided`] the mean of its two sides.
-    pub fn albedo_hint(&self) -> Vec3 {
-        match self {
-            Self::Diffuse(b) => b.reflectance(),
-            Self::Conductor(b) => b.reflectance(1.0),
-            Self::RoughConductor(b) => b.normal_reflectance(),
-            Self::Dielectric(b) => b.normal_albedo(),
-            Self::RoughDielectric(b) => b.normal_albedo(),
-            Self::ThinDielectric(b) => b.normal_albedo(),
-            Self::Plastic(b) => b.normal_albedo(),
-            Self::RoughPlastic(b) => b.normal_albedo(),
-            Self::TwoSided(b) => 0.5 * (b.front().albedo_hint() + b.back().albedo_hint()),
-            Self::Blend(b) => {
-                b.first().albedo_hint() * (1.0 - b.weight()) + b.second().albedo_hint() * b.weight()
-            }
-        }
-    }
-}
-
-impl From<Diffuse> for Bsdf {
-    fn from(b: Diffuse) -> Self {
-        Self::Diffuse(b)
-    }
-}
-
-impl From<Conductor> for Bsdf {
-    fn from(b: Conductor) -> Self {
-        Self::Conductor(b)
-    }
-}
-
-impl From<RoughConductor> for Bsdf {
-    fn from(b: RoughConductor) -> Self {
-        Self::RoughConductor(b)
-    }
-}
-
-impl From<Dielectric> for Bsdf {
-    fn from(b: Dielectric) -> Self {
-        Self::Dielectric(b)
-    }
-}
-
-impl From<RoughDielectric> for Bsdf {
-    fn from(b: RoughDielectric) -> Self {
-        Self::RoughDielectric(b)
-    }
-}
-
-impl From<ThinDielectric> for Bsdf {
-    fn from(b: ThinDielectric) -> Self {
-        Self::ThinDielectric(b)
-    }
-}
-
-impl From<Plastic> for Bsdf {
-    fn from(b: Plastic) -> Self {
-        Self::Plastic(b)
-    }
-}
-
-impl From<RoughPlastic> for Bsdf {
-    fn from(b: RoughPlastic) -> Self {
-        Self::RoughPlastic(b)
-    }
-}
-
-impl From<Blend> for Bsdf {
-    fn from(b: Blend) -> Self {
-        Self::Blend(b)
-    }
-}
-
-impl From<TwoSided> for Bsdf {
-    fn from(b: TwoSided) -> Self {
-        Self::TwoSided(b)
     }
 }

@@ -1,8 +1,9 @@
 //! Mitsuba's `conductor`: a smooth metal, a perfect mirror weighted by the conductor Fresnel term.
 
-use crate::bsdf::BsdfSample;
+use crate::bsdf::{BsdfSample, Model};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{ComplexIor, fresnel_conductor, reflect};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A one-sided perfect mirror with reflectance `specular_reflectance · F_conductor(cos θ)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,5 +42,25 @@ impl Conductor {
             eta: 1.0,
             is_null: false,
         })
+    }
+}
+
+impl Model for Conductor {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, _u_lobe: f32, _u_dir: Vec2) -> Option<BsdfSample> {
+        Conductor::sample(self, wo)
+    }
+
+    fn sample_delta(&self, wo: Vec3, _u_lobe: f32) -> Option<BsdfSample> {
+        Conductor::sample(self, wo)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.reflectance(1.0)
     }
 }

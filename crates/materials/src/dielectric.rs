@@ -1,10 +1,11 @@
 //! Mitsuba's `dielectric`: a smooth interface between two dielectrics (glass, water), which
 //! reflects and refracts by the exact unpolarised Fresnel equations.
 
-use crate::bsdf::BsdfSample;
+use crate::bsdf::{BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect, refract};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A smooth dielectric interface with relative index η = int_ior / ext_ior. The inside is below
 /// the surface (−z); light may arrive from either side.
@@ -81,5 +82,25 @@ impl Dielectric {
             eta,
             is_null: false,
         })
+    }
+}
+
+impl Model for Dielectric {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA | BsdfFlags::TRANSMISSION | BsdfFlags::LOBE_CHOICE
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, _u_dir: Vec2) -> Option<BsdfSample> {
+        Dielectric::sample(self, wo, u_lobe)
+    }
+
+    fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        Dielectric::sample(self, wo, u_lobe)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.normal_albedo()
     }
 }

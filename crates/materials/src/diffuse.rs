@@ -1,6 +1,7 @@
 //! Mitsuba's `diffuse`: an ideal one-sided Lambertian reflector.
 
-use crate::bsdf::BsdfSample;
+use crate::bsdf::{Bsdf, BsdfSample, Model};
+use crate::flags::BsdfFlags;
 use glam::{Vec2, Vec3};
 use sampling::warp::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use std::f32::consts::FRAC_1_PI;
@@ -64,5 +65,40 @@ impl Diffuse {
             eta: 1.0,
             is_null: false,
         })
+    }
+}
+
+impl Model for Diffuse {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DIFFUSE
+    }
+
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        Diffuse::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        Diffuse::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        Diffuse::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, _u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        Diffuse::sample(self, wo, u_dir)
+    }
+
+    fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Bsdf> {
+        Some(Diffuse::new(reflectance).into())
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.reflectance()
     }
 }

@@ -2,8 +2,9 @@
 //! by default), which reflects specularly by Fresnel and lets the rest reach the base, whose
 //! light leaves through the coating after any number of internal reflections.
 
-use crate::bsdf::BsdfSample;
+use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{diffuse_fresnel_reflectance, fresnel_dielectric, reflect};
 use glam::{Vec2, Vec3};
 use sampling::warp::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
@@ -217,5 +218,44 @@ impl Coating {
         } else {
             diffuse_reflectance / (1.0 - self.internal_reflectance)
         }
+    }
+}
+
+impl Model for Plastic {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DIFFUSE | BsdfFlags::DELTA | BsdfFlags::MIXED | BsdfFlags::LOBE_CHOICE
+    }
+
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        Plastic::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        Plastic::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        Plastic::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        Plastic::sample(self, wo, u_lobe, u_dir)
+    }
+
+    fn sample_delta(&self, wo: Vec3, _u_lobe: f32) -> Option<BsdfSample> {
+        self.sample_specular(wo)
+    }
+
+    fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Bsdf> {
+        Some(Plastic::with_diffuse_reflectance(self, reflectance).into())
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.normal_albedo()
     }
 }

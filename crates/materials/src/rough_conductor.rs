@@ -1,7 +1,8 @@
 //! Mitsuba's `roughconductor`: a rough metal, the Cook–Torrance microfacet model with a
 //! conductor Fresnel term, sampled through the normals visible from `wo`.
 
-use crate::bsdf::BsdfSample;
+use crate::bsdf::{BsdfSample, Model};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{ComplexIor, fresnel_conductor, reflect_about};
 use crate::microfacet::Microfacet;
 use glam::{Vec2, Vec3};
@@ -124,5 +125,46 @@ impl RoughConductor {
         let g = self.distribution.g(wo, wi, h);
         let fresnel = fresnel_conductor(wo.dot(h), self.ior);
         self.specular_reflectance * fresnel * (d * g / (4.0 * wo.z * wi.z))
+    }
+}
+
+impl Model for RoughConductor {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        let anisotropic = if self.distribution().is_anisotropic() {
+            BsdfFlags::ANISOTROPIC
+        } else {
+            BsdfFlags::EMPTY
+        };
+        BsdfFlags::GLOSSY | anisotropic
+    }
+
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        RoughConductor::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        RoughConductor::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        RoughConductor::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        Some(RoughConductor::lobe_weight(self, wo, wi))
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, _u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        RoughConductor::sample(self, wo, u_dir)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.normal_reflectance()
     }
 }

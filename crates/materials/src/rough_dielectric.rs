@@ -2,8 +2,9 @@
 //! microfacet model of Walter et al. 2007 for reflection and refraction, sampled through the
 //! normals visible from `wo`.
 
-use crate::bsdf::BsdfSample;
+use crate::bsdf::{BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect_about, refract_about};
 use crate::microfacet::Microfacet;
 use crate::rough_conductor::LOBE_WEIGHT_FLOOR;
@@ -196,5 +197,46 @@ impl RoughDielectric {
             eta,
             is_null: false,
         })
+    }
+}
+
+impl Model for RoughDielectric {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        let anisotropic = if self.distribution().is_anisotropic() {
+            BsdfFlags::ANISOTROPIC
+        } else {
+            BsdfFlags::EMPTY
+        };
+        BsdfFlags::GLOSSY | BsdfFlags::TRANSMISSION | BsdfFlags::LOBE_CHOICE | anisotropic
+    }
+
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        RoughDielectric::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        RoughDielectric::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        RoughDielectric::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        Some(RoughDielectric::lobe_weight(self, wo, wi))
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        RoughDielectric::sample(self, wo, u_lobe, u_dir)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.normal_albedo()
     }
 }

@@ -1,8 +1,9 @@
 //! Mitsuba's `roughplastic`: a diffuse base under a rough dielectric coating, whose
 //! microfacets reflect a glossy lobe and let the rest reach the base.
 
-use crate::bsdf::BsdfSample;
+use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect_about};
 use crate::microfacet::Microfacet;
 use crate::plastic::{Coating, specular_sampling_weight};
@@ -224,5 +225,45 @@ impl RoughPlastic {
         } else {
             floor
         }
+    }
+}
+
+impl Model for RoughPlastic {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DIFFUSE | BsdfFlags::GLOSSY | BsdfFlags::LOBE_CHOICE
+    }
+
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        RoughPlastic::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        RoughPlastic::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        RoughPlastic::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        Some(RoughPlastic::lobe_weight(self, wo, wi))
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        RoughPlastic::sample(self, wo, u_lobe, u_dir)
+    }
+
+    fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Bsdf> {
+        Some(RoughPlastic::with_diffuse_reflectance(self, reflectance).into())
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.normal_albedo()
     }
 }

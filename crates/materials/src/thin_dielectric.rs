@@ -2,10 +2,11 @@
 //! smooth dielectric with all its internal reflections summed and lets the rest through without
 //! bending it.
 
-use crate::bsdf::BsdfSample;
+use crate::bsdf::{BsdfSample, Model};
 use crate::error::{MaterialError, relative_ior};
+use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A thin slab of a dielectric with relative index η = int_ior / ext_ior (a window pane, a soap
 /// film), the same from both sides.
@@ -78,5 +79,25 @@ impl ThinDielectric {
             eta: 1.0,
             is_null,
         })
+    }
+}
+
+impl Model for ThinDielectric {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA | BsdfFlags::NULL | BsdfFlags::TRANSMISSION | BsdfFlags::LOBE_CHOICE
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, _u_dir: Vec2) -> Option<BsdfSample> {
+        ThinDielectric::sample(self, wo, u_lobe)
+    }
+
+    fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        ThinDielectric::sample(self, wo, u_lobe)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.normal_albedo()
     }
 }

@@ -1,8 +1,9 @@
 //! Mitsuba's `twosided`: one-sided reflecting BSDFs on both sides of a surface, the same one or
 //! a different one per side.
 
-use crate::bsdf::{Bsdf, BsdfSample};
+use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::error::MaterialError;
+use crate::flags::BsdfFlags;
 use glam::{Vec2, Vec3};
 
 /// A reflecting BSDF on each side of the surface. When `wo` is below the surface (its z has the
@@ -13,9 +14,9 @@ use glam::{Vec2, Vec3};
 pub struct TwoSided {
     front: Box<Bsdf>,
     back: Box<Bsdf>,
-    /// Both sides are delta BSDFs: kept so that [`Bsdf::is_delta`], asked at every path vertex,
+    /// The union of both sides' flags: kept so that [`Bsdf::flags`], asked at every path vertex,
     /// is not recursive and can be inlined.
-    is_delta: bool,
+    flags: BsdfFlags,
 }
 
 impl TwoSided {
@@ -27,11 +28,11 @@ impl TwoSided {
 
     /// `front` on the side of the normal, `back` on the other; an error if either transmits.
     pub fn with_sides(front: Bsdf, back: Bsdf) -> Result<Self, MaterialError> {
-        if front.has_transmission() || back.has_transmission() {
+        if (front.flags() | back.flags()).contains(BsdfFlags::TRANSMISSION) {
             return Err(MaterialError::TransmissiveTwoSided);
         }
         Ok(Self {
-            is_delta: front.is_delta() && back.is_delta(),
+            flags: front.flags() | back.flags(),
             front: Box::new(front),
             back: Box::new(back),
         })
@@ -43,7 +44,7 @@ impl TwoSided {
         Some(Self {
             front: Box::new(self.front.with_diffuse_reflectance(reflectance)?),
             back: Box::new(self.back.with_diffuse_reflectance(reflectance)?),
-            is_delta: self.is_delta,
+            flags: self.flags,
         })
     }
 
@@ -55,12 +56,6 @@ impl TwoSided {
     /// The BSDF on the other side, seen through mirrored directions (z ≥ 0).
     pub fn back(&self) -> &Bsdf {
         &self.back
-    }
-
-    /// Whether both sides are delta BSDFs (every direction they scatter to is a delta lobe's).
-    #[inline]
-    pub fn is_delta(&self) -> bool {
-        self.is_delta
     }
 
     /// The BSDF that `wo` (local frame) sees, and whether directions must be mirrored for it.
@@ -121,5 +116,49 @@ fn mirror_if(w: Vec3, mirrored: bool) -> Vec3 {
         Vec3::new(w.x, w.y, -w.z)
     } else {
         w
+    }
+}
+
+impl Model for TwoSided {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        self.flags
+    }
+
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        TwoSided::eval(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        TwoSided::pdf_solid_angle(self, wo, wi)
+    }
+
+    #[inline]
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        TwoSided::eval_with_pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        TwoSided::lobe_weight(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        TwoSided::sample(self, wo, u_lobe, u_dir)
+    }
+
+    fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        TwoSided::sample_delta(self, wo, u_lobe)
+    }
+
+    fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Bsdf> {
+        TwoSided::with_diffuse_reflectance(self, reflectance).map(Bsdf::TwoSided)
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        0.5 * (self.front().albedo_hint() + self.back().albedo_hint())
     }
 }

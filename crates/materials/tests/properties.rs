@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 use materials::LOBE_WEIGHT_FLOOR;
 use materials::fresnel::{fresnel_conductor, reflect};
 use materials::{
-    Blend, Bsdf, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet,
+    Blend, Bsdf, BsdfFlags, BsdfSample, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet,
     MicrofacetKind, Plastic, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 use sampling::Rng;
@@ -175,11 +175,17 @@ fn lobe_weights_are_positive_everywhere_and_peak_at_the_mirror_direction() {
             };
             given += 1;
             assert!(
-                bsdf.is_glossy() && weight >= LOBE_WEIGHT_FLOOR && weight.is_finite(),
+                bsdf.flags().contains(BsdfFlags::GLOSSY)
+                    && weight >= LOBE_WEIGHT_FLOOR
+                    && weight.is_finite(),
                 "{name}, pair {i} (seed 43), wo {wo}, wi {wi}: {weight}"
             );
         }
-        assert_eq!(given > 0, bsdf.is_glossy(), "{name}: {given} of 1000 given");
+        assert_eq!(
+            given > 0,
+            bsdf.flags().contains(BsdfFlags::GLOSSY),
+            "{name}: {given} of 1000 given"
+        );
     }
     for alpha in [0.05, 0.2] {
         let bsdf = rough_conductor(MicrofacetKind::Ggx, alpha, gold());
@@ -262,8 +268,11 @@ fn sample_value_and_pdf_equal_eval_and_pdf() {
 #[test]
 fn delta_bsdfs_have_zero_eval_and_pdf() {
     let mut rng = Rng::new(5);
-    for (name, bsdf) in all_bsdfs().into_iter().filter(|(_, b)| b.is_delta()) {
-        assert!(bsdf.has_delta_lobe(), "{name}");
+    for (name, bsdf) in all_bsdfs()
+        .into_iter()
+        .filter(|(_, b)| b.flags().is_delta())
+    {
+        assert!(bsdf.flags().contains(BsdfFlags::DELTA), "{name}");
         for _ in 0..1000 {
             let wo = random_upper_direction(&mut rng);
             let (u_lobe, u_dir) = random_u(&mut rng);
@@ -435,9 +444,9 @@ fn reflection_is_reciprocal() {
 #[test]
 fn one_sided_bsdfs_are_black_from_behind() {
     let mut rng = Rng::new(12);
-    let one_sided = all_bsdfs()
-        .into_iter()
-        .filter(|(name, b)| !name.starts_with("twosided") && !b.has_transmission());
+    let one_sided = all_bsdfs().into_iter().filter(|(name, b)| {
+        !name.starts_with("twosided") && !b.flags().contains(BsdfFlags::TRANSMISSION)
+    });
     for (name, bsdf) in one_sided {
         for _ in 0..500 {
             let above = random_upper_direction(&mut rng);
@@ -486,7 +495,11 @@ fn two_sided_mirrors_the_inner_bsdf_below_the_surface() {
     }
     let glass = Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior");
     assert!(TwoSided::new(Bsdf::from(glass)).is_err());
-    assert!(two_sided(Bsdf::from(Conductor::new(gold(), Vec3::ONE))).is_delta());
+    assert!(
+        two_sided(Bsdf::from(Conductor::new(gold(), Vec3::ONE)))
+            .flags()
+            .is_delta()
+    );
 }
 
 /// Mitsuba's `twosided` with two BSDFs: the front one above the surface, the back one
@@ -520,8 +533,8 @@ fn two_sided_with_two_bsdfs_uses_the_back_one_below_the_surface() {
     }
     let mirror = Bsdf::from(Conductor::new(gold(), Vec3::ONE));
     let mixed = TwoSided::with_sides(front.clone(), mirror.clone()).expect("reflective");
-    assert!(!Bsdf::from(mixed.clone()).is_delta());
-    assert!(Bsdf::from(mixed.clone()).has_delta_lobe());
+    assert!(!Bsdf::from(mixed.clone()).flags().is_delta());
+    assert!(Bsdf::from(mixed.clone()).flags().contains(BsdfFlags::DELTA));
     assert_eq!(mixed.facing(Vec3::Z).0, &front);
     assert_eq!(mixed.facing(Vec3::NEG_Z), (&mirror, true));
     let glass = Bsdf::from(Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::ONE).expect("valid ior"));

@@ -1,7 +1,7 @@
 //! What a scene contains, so that techniques it cannot use are left out.
 
 use lights::Light;
-use materials::Bsdf;
+use materials::{Bsdf, BsdfFlags};
 
 /// The features of a scene that decide which variance-reduction techniques can pay off.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -14,12 +14,12 @@ pub struct SceneFeatures {
     pub area_light_count: usize,
     /// True when the scene has an environment emitter.
     pub has_environment: bool,
-    /// True when some material has a glossy lobe ([`Bsdf::is_glossy`]: a rough conductor).
+    /// True when some material has a glossy lobe ([`BsdfFlags::GLOSSY`]: a rough conductor).
     pub has_glossy_bsdfs: bool,
     /// True when some material has a delta lobe (mirror, smooth dielectric, or a twosided
     /// with one on either side).
     pub has_delta_bsdfs: bool,
-    /// True when some material has a null lobe ([`Bsdf::has_null_lobe`]: `null`, a mask, a thin
+    /// True when some material has a null lobe ([`BsdfFlags::NULL`]: `null`, a mask, a thin
     /// dielectric), which Mitsuba's volumetric path tracers do not count as a path vertex.
     pub has_null_lobes: bool,
     /// True when some material is Lambertian (`diffuse`, or a `twosided` with one on either
@@ -42,15 +42,21 @@ impl SceneFeatures {
     pub fn of(materials: &[Bsdf], lights: &[Light]) -> Self {
         Self {
             light_count: lights.len(),
-            has_non_delta_bsdfs: materials.iter().any(|m| !m.is_delta()),
-            has_delta_bsdfs: materials.iter().any(Bsdf::has_delta_lobe),
+            has_non_delta_bsdfs: materials.iter().any(|m| !m.flags().is_delta()),
+            has_delta_bsdfs: materials
+                .iter()
+                .any(|m| m.flags().contains(BsdfFlags::DELTA)),
             area_light_count: lights
                 .iter()
                 .filter(|l| matches!(l, Light::Mesh(_) | Light::Sphere(_)))
                 .count(),
             has_environment: lights.iter().any(Light::is_environment),
-            has_glossy_bsdfs: materials.iter().any(Bsdf::is_glossy),
-            has_null_lobes: materials.iter().any(Bsdf::has_null_lobe),
+            has_glossy_bsdfs: materials
+                .iter()
+                .any(|m| m.flags().contains(BsdfFlags::GLOSSY)),
+            has_null_lobes: materials
+                .iter()
+                .any(|m| m.flags().contains(BsdfFlags::NULL)),
             has_diffuse_bsdfs: materials.iter().any(|m| match m {
                 Bsdf::Diffuse(_) => true,
                 Bsdf::TwoSided(two_sided) => [two_sided.front(), two_sided.back()]

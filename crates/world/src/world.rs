@@ -5,7 +5,7 @@ use crate::{CameraRay, RayTally};
 use geometry::{Accel, Hit, Ray, SpawnPoint};
 use glam::{Affine2, Vec3, Vec3A};
 use lights::{Light, LightSample};
-use materials::{BitmapTexture, Bsdf};
+use materials::{BitmapTexture, Bsdf, BsdfFlags};
 use sampling::Frame;
 use std::sync::Arc;
 
@@ -73,7 +73,7 @@ pub struct World {
     light_weights: Vec<f32>,
     environment: Option<u32>,
     delta_lights: Vec<u32>,
-    /// Per material, whether it is anisotropic ([`Bsdf::is_anisotropic`]); empty when none is,
+    /// Per material, whether it is anisotropic ([`BsdfFlags::ANISOTROPIC`]); empty when none is,
     /// so that isotropic scenes never build a frame from the surface's tangent.
     anisotropic: Vec<bool>,
 }
@@ -150,8 +150,9 @@ impl World {
         let delta_lights = (0..lights.len() as u32)
             .filter(|&i| lights[i as usize].is_delta())
             .collect();
-        let anisotropic = if materials.iter().any(Bsdf::is_anisotropic) {
-            materials.iter().map(Bsdf::is_anisotropic).collect()
+        let is_anisotropic = |m: &Bsdf| m.flags().contains(BsdfFlags::ANISOTROPIC);
+        let anisotropic = if materials.iter().any(is_anisotropic) {
+            materials.iter().map(is_anisotropic).collect()
         } else {
             Vec::new()
         };
@@ -325,17 +326,21 @@ impl World {
         }
     }
 
-    /// Whether some material chooses its lobe by a random number ([`Bsdf::uses_lobe_choice`]:
+    /// Whether some material chooses its lobe by a random number ([`BsdfFlags::LOBE_CHOICE`]:
     /// a dielectric), so the integrators draw one at every vertex.
     #[inline]
     pub fn has_lobe_choice(&self) -> bool {
-        self.materials.iter().any(Bsdf::uses_lobe_choice)
+        self.materials
+            .iter()
+            .any(|m| m.flags().contains(BsdfFlags::LOBE_CHOICE))
     }
 
-    /// Whether some material has a null lobe ([`Bsdf::has_null_lobe`]: a pass straight through).
+    /// Whether some material has a null lobe ([`BsdfFlags::NULL`]: a pass straight through).
     #[inline]
     pub fn has_null_lobes(&self) -> bool {
-        self.materials.iter().any(Bsdf::has_null_lobe)
+        self.materials
+            .iter()
+            .any(|m| m.flags().contains(BsdfFlags::NULL))
     }
 
     /// The acceleration structure over all shapes.
