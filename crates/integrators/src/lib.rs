@@ -5,7 +5,7 @@
 mod camera_ray;
 mod counters;
 mod delta_lights;
-mod light_choice;
+mod light_selection;
 mod light_tracer;
 mod next_direction;
 mod optional_draw;
