@@ -3,7 +3,7 @@
 //! as a switch.
 
 mod delta_lights;
-mod light_choice;
+mod light_selection;
 mod light_tracer;
 mod next_direction;
 mod optional_draw;

@@ -15,7 +15,7 @@
 //! per light sample, then the BSDF numbers once per BSDF sample, and nothing else is drawn.
 
 use crate::delta_lights::delta_lights;
-use crate::light_choice::choose_light;
+use crate::light_selection::choose_light;
 use crate::next_direction::NextDirection;
 use crate::optional_draw::next_1d_if;
 use crate::path_reuse::{FirstVertex, ReusablePath, SecondVertex};

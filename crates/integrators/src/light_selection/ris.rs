@@ -1,9 +1,28 @@
-//! Choosing a light and a point on it for next event estimation: by a fixed probability mass
-//! function (uniform or power), or by resampled importance sampling over several candidates.
+//! Light selection by resampled importance sampling (RIS; Talbot, Arvo and Shirley, "Importance
+//! Resampling for Global Illumination", EGSR 2005).
+//!
+//! **What it is.** Several candidate lights are drawn cheaply from the power-proportional
+//! source and one is kept in proportion to a target p̂ that follows its contribution at the
+//! shading point better than power does: the light's irradiance estimate there, times the
+//! glossy lobe towards it on a glossy surface ([`selection_target`]). A weighted reservoir
+//! keeps the choice in constant memory; its contribution weight W makes the estimate unbiased
+//! wherever p̂ > 0.
+//!
+//! **The lecture's formula.** Resampled importance sampling draws M cheap candidates x_j from a
+//! source p and keeps one, y, in proportion to the target p̂:
+//!
+//! ```text
+//! w_j = p̂(x_j) / p(x_j),   P(keep x_j) = w_j / Σ w,   L ≈ f(y) · W,   W = (1/M) Σ_j w_j / p̂(y)
+//! ```
+//!
+//! **When `auto` uses it.** It is one of `auto`'s trials wherever there are several lights,
+//! kept when the pilot measures it more efficient than power-proportional choice beyond noise
+//! (`manylights`: 1.6–1.7×); the `ris` preset always uses it, with four candidates.
 
+use super::{ChosenLight, evaluate};
 use glam::{Vec2, Vec3};
-use lights::{Light, LightSample, LightSelection, LightSelector};
-use materials::{Bsdf, BsdfFlags};
+use lights::{Light, LightSelector};
+use materials::BsdfFlags;
 use sampling::reservoir::Reservoir;
 use world::SurfaceHit;
 
@@ -11,102 +30,6 @@ use world::SurfaceHit;
 /// surface turns the irradiance E of an environment around it into reflected radiance E/π; a
 /// glossy lobe sees some of the environment in whichever direction it points.
 const ENVIRONMENT_LOBE_WEIGHT: f32 = std::f32::consts::FRAC_1_PI;
-
-/// A light sample chosen for a shadow ray, with the BSDF already evaluated towards it.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ChosenLight {
-    /// The sampled direction and radiance.
-    pub sample: LightSample,
-    /// f(wo, wi) · |cos θi| towards the sample, RGB.
-    pub f_cos: Vec3,
-    /// Factor that makes `f_cos · radiance · weight` an unbiased estimate of direct light:
-    /// 1 / (pmf · pdf) for a fixed pmf, the RIS contribution weight W for RIS.
-    pub weight: f32,
-    /// The light strategy's density per steradian used in MIS weights: pmf · pdf_solid_angle of
-    /// the selection pmf (for RIS, of its power-proportional candidate source).
-    pub pdf_for_mis: f32,
-    /// The direction to the light in the shading frame (unit length).
-    pub wi_local: Vec3,
-    /// The BSDF's sampling density per steradian towards the light (computed with f, which
-    /// shares its work; what MIS weighs the light sample against).
-    pub pdf_bsdf_solid_angle: f32,
-}
-
-/// Picks a light and a point on it as `mode` says, from the shading point of `surface` with
-/// outgoing direction `wo` (local frame). `u_choice` (the light choice, and RIS's reservoir
-/// choice) and `u_point` come from the sampler, each from its own dimension.
-#[inline(always)]
-pub(crate) fn choose_light(
-    mode: LightSelection,
-    selector: &LightSelector,
-    lights: &[Light],
-    surface: &SurfaceHit<'_>,
-    wo: Vec3,
-    u_choice: Vec2,
-    u_point: Vec2,
-) -> Option<ChosenLight> {
-    match mode {
-        LightSelection::Uniform | LightSelection::Power => {
-            let (index, pmf) = selector.select(u_choice.x);
-            let candidate = evaluate(&lights[index], pmf, surface, wo, u_point)?;
-            let pdf = pmf * candidate.sample.pdf_solid_angle;
-            Some(ChosenLight {
-                weight: 1.0 / pdf,
-                pdf_for_mis: pdf,
-                ..candidate
-            })
-        }
-        LightSelection::Ris { candidates } => {
-            resample(candidates, selector, lights, surface, wo, u_choice, u_point)
-        }
-    }
-}
-
-/// One candidate: the light sample and the BSDF towards it, `None` if it carries nothing.
-#[inline(always)]
-fn evaluate(
-    light: &Light,
-    pmf: f32,
-    surface: &SurfaceHit<'_>,
-    wo: Vec3,
-    u_point: Vec2,
-) -> Option<ChosenLight> {
-    // The common cases inlined, as the walk inlines a diffuse BSDF's sampling: an area light on
-    // a mesh, seen from a diffuse surface. Each arm finishes on its own: joined, both would
-    // keep their sample where the out-of-line call stores its one, and the inlined sample,
-    // reloaded from there in pieces that straddle how it was stored, would stall.
-    match light {
-        Light::Mesh(mesh) => with_bsdf(mesh.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
-        light => with_bsdf(light.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
-    }
-}
-
-/// [`evaluate`] once the light has given its `sample`.
-#[inline(always)]
-fn with_bsdf(
-    sample: LightSample,
-    pmf: f32,
-    surface: &SurfaceHit<'_>,
-    wo: Vec3,
-) -> Option<ChosenLight> {
-    let wi = surface.frame.to_local(sample.wi);
-    let (f, pdf_bsdf_solid_angle) = match surface.bsdf {
-        Bsdf::Diffuse(diffuse) => diffuse.eval_with_pdf(wo, wi),
-        bsdf => bsdf.eval_with_pdf(wo, wi),
-    };
-    let f_cos = f * wi.z.abs();
-    if f_cos == Vec3::ZERO || sample.radiance == Vec3::ZERO {
-        return None;
-    }
-    Some(ChosenLight {
-        sample,
-        f_cos,
-        weight: 0.0,
-        pdf_for_mis: pmf * sample.pdf_solid_angle,
-        wi_local: wi,
-        pdf_bsdf_solid_angle,
-    })
-}
 
 /// `u` moved into the `k`-th of `count` equal strata of [0, 1): the `count` values are spread
 /// evenly, and move with `u` (so a stratified or blue-noise `u` stays so).
@@ -134,7 +57,7 @@ fn stratum(u: f32, k: u32, count: u32) -> f32 {
 /// returned weight is W / pdf_solid_angle of the point. A candidate costs a distance and a
 /// dot product, not a light sample: sampling points for every candidate (resampling points by
 /// their exact unshadowed contribution) cut the error less than it cost in time.
-fn resample(
+pub(super) fn choose(
     count: u32,
     source: &LightSelector,
     lights: &[Light],

@@ -1,0 +1,124 @@
+//! Light selection for next event estimation: which light a shadow ray goes to, and the point
+//! on it.
+//!
+//! **What it is.** [Next event estimation](crate::path::nee) sends one shadow ray per vertex,
+//! so with several lights it must choose one. Any choice is unbiased if the sample is divided by
+//! the probability of the choice; the closer the choice follows each light's contribution, the
+//! lower the variance.
+//!
+//! **The lecture's formula.** The dice example: estimate 6·D1 + D2 by rolling one die, chosen
+//! with probability p and weighted by 1/p. For lights,
+//!
+//! ```text
+//! L ≈ L_k(x) / P(k)
+//! ```
+//!
+//! with P(k) a fixed probability mass function, uniform 1/N or proportional to power
+//! Φ_k / Σ_j Φ_j ([`power`]), or resampled from several candidates by their estimated
+//! contribution at the shading point ([`ris`]).
+//!
+//! **When `auto` uses it.** Uniform choice for one light (there is nothing to choose), power for
+//! several; RIS and uniform choice are trials of `auto`'s pilot wherever there are several
+//! lights, kept when measured more efficient.
+//!
+//! Each choice is followed by one point on the chosen light and the BSDF evaluated towards it
+//! ([`evaluate`]), which is what the shadow ray's contribution needs.
+
+mod power;
+mod ris;
+
+use glam::{Vec2, Vec3};
+use lights::LightSelection;
+use lights::{Light, LightSample, LightSelector};
+use materials::Bsdf;
+use world::SurfaceHit;
+
+/// A light sample chosen for a shadow ray, with the BSDF already evaluated towards it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ChosenLight {
+    /// The sampled direction and radiance.
+    pub sample: LightSample,
+    /// f(wo, wi) · |cos θi| towards the sample, RGB.
+    pub f_cos: Vec3,
+    /// Factor that makes `f_cos · radiance · weight` an unbiased estimate of direct light:
+    /// 1 / (pmf · pdf) for a fixed pmf, the RIS contribution weight W for RIS.
+    pub weight: f32,
+    /// The light strategy's density per steradian used in MIS weights: pmf · pdf_solid_angle of
+    /// the selection pmf (for RIS, of its power-proportional candidate source).
+    pub pdf_for_mis: f32,
+    /// The direction to the light in the shading frame (unit length).
+    pub wi_local: Vec3,
+    /// The BSDF's sampling density per steradian towards the light (computed with f, which
+    /// shares its work; what MIS weighs the light sample against).
+    pub pdf_bsdf_solid_angle: f32,
+}
+
+/// Picks a light and a point on it as `mode` says, from the shading point of `surface` with
+/// outgoing direction `wo` (local frame). `u_choice` (the light choice, and RIS's reservoir
+/// choice) and `u_point` come from the sampler, each from its own dimension.
+#[inline(always)]
+pub(crate) fn choose_light(
+    mode: LightSelection,
+    selector: &LightSelector,
+    lights: &[Light],
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+    u_choice: Vec2,
+    u_point: Vec2,
+) -> Option<ChosenLight> {
+    match mode {
+        LightSelection::Uniform | LightSelection::Power => {
+            power::choose(selector, lights, surface, wo, u_choice.x, u_point)
+        }
+        LightSelection::Ris { candidates } => {
+            ris::choose(candidates, selector, lights, surface, wo, u_choice, u_point)
+        }
+    }
+}
+
+/// One candidate: the light sample and the BSDF towards it, `None` if it carries nothing.
+/// `weight` is left 0 for the caller, whose choice decides it.
+#[inline(always)]
+fn evaluate(
+    light: &Light,
+    pmf: f32,
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+    u_point: Vec2,
+) -> Option<ChosenLight> {
+    // The common cases inlined, as the walk inlines a diffuse BSDF's sampling: an area light on
+    // a mesh, seen from a diffuse surface. Each arm finishes on its own: joined, both would
+    // keep their sample where the out-of-line call stores its one, and the inlined sample,
+    // reloaded from there in pieces that straddle how it was stored, would stall.
+    match light {
+        Light::Mesh(mesh) => with_bsdf(mesh.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
+        light => with_bsdf(light.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
+    }
+}
+
+/// [`evaluate`] once the light has given its `sample`.
+#[inline(always)]
+fn with_bsdf(
+    sample: LightSample,
+    pmf: f32,
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+) -> Option<ChosenLight> {
+    let wi = surface.frame.to_local(sample.wi);
+    let (f, pdf_bsdf_solid_angle) = match surface.bsdf {
+        Bsdf::Diffuse(diffuse) => diffuse.eval_with_pdf(wo, wi),
+        bsdf => bsdf.eval_with_pdf(wo, wi),
+    };
+    let f_cos = f * wi.z.abs();
+    if f_cos == Vec3::ZERO || sample.radiance == Vec3::ZERO {
+        return None;
+    }
+    Some(ChosenLight {
+        sample,
+        f_cos,
+        weight: 0.0,
+        pdf_for_mis: pmf * sample.pdf_solid_angle,
+        wi_local: wi,
+        pdf_bsdf_solid_angle,
+    })
+}
