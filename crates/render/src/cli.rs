@@ -144,8 +144,8 @@ pub struct RenderArgs {
     /// (exit status 130); a second Ctrl-C quits at once without writing.
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
     pub time: Option<f64>,
-    /// Integrator preset [default: the scene's `<integrator type>` where it names a preset,
-    /// else auto]
+    /// Integrator preset; default: the scene's `<integrator type>` where it names a preset,
+    /// else auto
     #[arg(long, value_parser = integrator_preset())]
     pub integrator: Option<IntegratorPreset>,
     /// Sample generator; default from the scene's sampler.
