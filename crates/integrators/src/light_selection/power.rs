@@ -2,8 +2,8 @@
 //!
 //! **What it is.** A light is chosen with a probability that does not depend on the shading
 //! point, from the alias table of [`lights::LightSelector`]: proportional to each light's
-//! emitted power times its `sampling_weight` (`LightSelectionMode::Power`), or to the weights
-//! alone (`LightSelectionMode::Uniform`, equal for lights without one). Bright lights get more
+//! emitted power times its `sampling_weight` (`LightSelection::Power`), or to the weights
+//! alone (`LightSelection::Uniform`, equal for lights without one). Bright lights get more
 //! shadow rays; the choice costs one table look-up.
 //!
 //! **The lecture's formula.** Pick a light with probability proportional to its estimated
