@@ -260,7 +260,8 @@ fn warp_invert<'py>(
 
 /// The sampler kind called `name` (as `strata render --sampler` names it).
 fn sampler_kind(name: &str) -> PyResult<SamplerKind> {
-    name.parse().map_err(|e: sampling::UnknownSamplerKind| value_error(e.to_string()))
+    name.parse()
+        .map_err(|e: sampling::UnknownSamplerKind| value_error(e.to_string()))
 }
 
 /// The first `dimensions` numbers of each of the `spp` samples of pixel `(x, y)` that sampler
