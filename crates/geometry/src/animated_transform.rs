@@ -147,14 +147,6 @@ impl AnimatedTransform {
         .matrix()
     }
 
-    /// Whether every keyframe is the same transform (to 1e-12), so nothing moves.
-    pub fn is_static(&self) -> bool {
-        let first = self.keyframes[0].matrix();
-        self.keyframes[1..]
-            .iter()
-            .all(|k| k.matrix().abs_diff_eq(first, 1e-12))
-    }
-
     /// A box holding `bounds` (object space) transformed at every time: exact for segments
     /// whose rotation does not change (the transformed points then move affinely in time, so
     /// the box of the two ends holds the sweep), and for rotating segments the box of the

@@ -153,14 +153,14 @@ impl<'a> Params<'a> {
             None => Ok(None),
             Some(prop) => match prop.value {
                 Value::Transform(m) => Ok(Some(m)),
-                Value::Animation(ref keyframes) => Err(prop.loc.error(format!(
-                    "\"{}\" is animated ({} keyframes, times {} to {}), which Strata reads but \
-                     cannot render yet (motion blur); give a <transform>",
-                    prop.name,
-                    keyframes.len(),
-                    keyframes[0].0,
-                    keyframes[keyframes.len() - 1].0
-                ))),
+                Value::Animation(ref animation) => {
+                    let (first, last) = animation.time_range();
+                    Err(prop.loc.error(format!(
+                        "\"{}\" is animated (times {first} to {last}), which Strata reads but \
+                         cannot render yet (motion blur); give a <transform>",
+                        prop.name
+                    )))
+                }
                 _ => Err(wrong_type(prop, "transform")),
             },
         }

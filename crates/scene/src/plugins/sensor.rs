@@ -99,8 +99,8 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
         [0.0, 0.0]
     } else {
         [
-            finite(&mut params, "principal_point_offset_x", 0.0)?,
-            finite(&mut params, "principal_point_offset_y", 0.0)?,
+            finite(&mut params, "principal_point_offset_x", 0.0)? as f32,
+            finite(&mut params, "principal_point_offset_y", 0.0)? as f32,
         ]
     };
     let lens = if thin_lens {
@@ -120,16 +120,10 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
         None
     };
     // Times keep double precision: a shutter of 1e-9 may open at any time.
-    let mut time = |name: &'static str| -> Result<f64> {
-        let value = params.float_or(name, 0.0)?;
-        if !value.is_finite() {
-            return Err(params
-                .loc_of(name)
-                .error(format!("\"{name}\" must be finite, got {value}")));
-        }
-        Ok(value)
-    };
-    let shutter = [time("shutter_open")?, time("shutter_close")?];
+    let shutter = [
+        finite(&mut params, "shutter_open", 0.0)?,
+        finite(&mut params, "shutter_close", 0.0)?,
+    ];
     if shutter[0] > shutter[1] {
         return Err(params
             .loc_of("shutter_close")
@@ -348,8 +342,8 @@ fn filter_desc(node: &ObjectNode) -> Result<FilterDesc> {
             stddev: positive(&mut params, "stddev", 0.5)?,
         },
         "mitchell" => FilterDesc::Mitchell {
-            b: finite(&mut params, "B", 1.0 / 3.0)?,
-            c: finite(&mut params, "C", 1.0 / 3.0)?,
+            b: finite(&mut params, "B", 1.0 / 3.0)? as f32,
+            c: finite(&mut params, "C", 1.0 / 3.0)? as f32,
         },
         "catmullrom" => FilterDesc::CatmullRom,
         "lanczos" => FilterDesc::Lanczos {
@@ -371,15 +365,16 @@ const FILTERS: [&str; 6] = [
     "lanczos",
 ];
 
-/// A float parameter with a default that must be finite in single precision.
-fn finite(params: &mut Params, name: &'static str, default: f64) -> Result<f32> {
+/// A float parameter with a default that must be finite in single precision (returned in
+/// double precision, which times keep).
+fn finite(params: &mut Params, name: &'static str, default: f64) -> Result<f64> {
     let value = params.float_or(name, default)?;
     if !(value as f32).is_finite() {
         return Err(params
             .loc_of(name)
             .error(format!("\"{name}\" must be finite, got {value}")));
     }
-    Ok(value as f32)
+    Ok(value)
 }
 
 /// A positive float parameter with a default.

@@ -78,8 +78,8 @@ pub(crate) enum Value {
     SpectrumPairs(Vec<(f64, f64)>),
     Transform(DMat4),
     /// A transform that moves: `<animation>` with `<transform time="t">` keyframes (Strata's
-    /// extension, after Mitsuba 0.6), checked by [`geometry::AnimatedTransform::new`].
-    Animation(Vec<(f64, DMat4)>),
+    /// extension, after Mitsuba 0.6).
+    Animation(geometry::AnimatedTransform),
 }
 
 impl Value {
@@ -579,10 +579,10 @@ impl Builder {
         }
         if tag == "animation" {
             attrs.check(&["name"], &["name"], &loc)?;
-            let keyframes = self.animation(ctx, node, &loc)?;
+            let animation = self.animation(ctx, node, &loc)?;
             return Ok(Prop {
                 name: name(),
-                value: Value::Animation(keyframes),
+                value: Value::Animation(animation),
                 loc,
             });
         }
@@ -635,14 +635,14 @@ impl Builder {
         })
     }
 
-    /// The keyframes inside an `<animation>`: `<transform time="t">` elements, at least two,
-    /// times strictly increasing, each matrix a translation, rotation and scale.
+    /// The transform an `<animation>` describes by `<transform time="t">` keyframes, at least
+    /// two, times strictly increasing, each matrix a translation, rotation and scale.
     fn animation(
         &mut self,
         ctx: &FileCtx,
         node: roxmltree::Node,
         loc: &Loc,
-    ) -> Result<Vec<(f64, DMat4)>> {
+    ) -> Result<geometry::AnimatedTransform> {
         let mut keyframes = Vec::new();
         let mut locs = Vec::new();
         for child in node.children() {
@@ -674,8 +674,7 @@ impl Builder {
                 | geometry::AnimationError::NotDecomposable { index, .. } => &locs[index],
             };
             at.error(error.to_string())
-        })?;
-        Ok(keyframes)
+        })
     }
 
     /// Composes the operations inside a `<transform>` in document order (`M = op * M`).
