@@ -75,6 +75,26 @@ impl Aabb {
         let d = self.diagonal();
         2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
     }
+
+    /// Whether the ray from `origin` along `dir` (any non-zero length) passes through the box
+    /// for some `t` in [0, `t_max`]: the slab test, its far distances grown by 3 γ-units so
+    /// that rounding never misses a box the exact ray enters (pbrt-v4's `IntersectP`).
+    pub fn hit_by(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        let inverse = dir.recip();
+        let (a, b) = ((self.min - origin) * inverse, (self.max - origin) * inverse);
+        // A zero direction coordinate gives ±∞ (or NaN at a slab face: then the slab is kept).
+        let near = a.min(b);
+        let far = a.max(b) * (1.0 + 2.0 * crate::gamma(3.0));
+        let t0 = [near.x, near.y, near.z]
+            .into_iter()
+            .filter(|t| !t.is_nan())
+            .fold(0.0f32, f32::max);
+        let t1 = [far.x, far.y, far.z]
+            .into_iter()
+            .filter(|t| !t.is_nan())
+            .fold(t_max, f32::min);
+        t0 <= t1
+    }
 }
 
 #[cfg(test)]
@@ -102,5 +122,24 @@ mod tests {
         assert_eq!(b.max, Vec3::new(1.0, 4.0, 1.0));
         assert!(pts.iter().all(|&p| b.contains(p)));
         assert_eq!(b.surface_area(), 2.0 * (4.0 * 6.0 + 6.0 * 1.0 + 1.0 * 4.0));
+    }
+
+    #[test]
+    fn hit_by_sees_rays_through_the_box_and_misses_the_others() {
+        let b = Aabb::new(Vec3::new(-1.0, -1.0, 2.0), Vec3::new(1.0, 1.0, 4.0));
+        assert!(b.hit_by(Vec3::ZERO, Vec3::Z, f32::INFINITY));
+        assert!(
+            !b.hit_by(Vec3::ZERO, Vec3::Z, 1.5),
+            "stops short of the box"
+        );
+        assert!(
+            !b.hit_by(Vec3::ZERO, Vec3::NEG_Z, f32::INFINITY),
+            "behind the origin"
+        );
+        assert!(!b.hit_by(Vec3::new(2.0, 0.0, 0.0), Vec3::Z, f32::INFINITY));
+        // Axis-parallel along a face, and from inside.
+        assert!(b.hit_by(Vec3::new(1.0, 0.0, 0.0), Vec3::Z, f32::INFINITY));
+        assert!(b.hit_by(Vec3::new(0.0, 0.0, 3.0), Vec3::X, 0.1));
+        assert!(b.hit_by(Vec3::new(0.0, 0.0, 3.0), Vec3::new(0.0, 0.0, 5.0), 0.01));
     }
 }

@@ -124,6 +124,22 @@ impl AnimatedTransform {
         )
     }
 
+    /// The same motion followed by a translation by `offset` (world units).
+    pub fn translated(&self, offset: DVec3) -> Self {
+        let mut moved = self.clone();
+        for keyframe in &mut moved.keyframes {
+            keyframe.translation += offset;
+        }
+        moved
+    }
+
+    /// Whether some keyframe mirrors space (a negative determinant).
+    pub fn mirrors(&self) -> bool {
+        self.keyframes
+            .iter()
+            .any(|keyframe| keyframe.stretch.determinant() < 0.0)
+    }
+
     /// The object-to-world matrix at `time` (held outside the keyframes).
     pub fn at(&self, time: f64) -> DMat4 {
         let frames = &self.keyframes;

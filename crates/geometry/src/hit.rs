@@ -23,6 +23,9 @@ pub struct Hit {
     /// `p2` at the hit (zero for a sphere). [`crate::Accel::uv`] turns them into surface
     /// coordinates.
     pub bary: Vec3,
+    /// When the ray that found it was traced, a fraction of the shutter interval
+    /// ([`crate::Ray::time`]): rays leaving the point ([`crate::SpawnPoint::of`]) keep it.
+    pub time: f32,
     /// Index of the shape in the list given to [`crate::Accel::new`].
     pub shape: u32,
     /// Index of the triangle within its mesh (always 0 for a sphere).

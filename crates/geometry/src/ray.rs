@@ -11,6 +11,10 @@ pub struct Ray {
     pub origin: Vec3,
     /// Unit direction.
     pub dir: Vec3,
+    /// When the ray is traced, as a fraction of the shutter interval: 0 when the shutter opens,
+    /// 1 when it closes (see [`crate::Motion`]). Moving shapes are intersected where they are
+    /// then; static ones ignore it. 0 in a scene where nothing moves.
+    pub time: f32,
 }
 
 impl Ray {
@@ -21,7 +25,14 @@ impl Ray {
         Self {
             origin,
             dir: dir.normalize(),
+            time: 0.0,
         }
+    }
+
+    /// The same ray traced at `time` (a fraction of the shutter interval, see [`Ray::time`]).
+    #[inline]
+    pub fn at_time(self, time: f32) -> Self {
+        Self { time, ..self }
     }
 
     /// The point at distance `t` (world units) along the ray.
@@ -34,12 +45,14 @@ impl Ray {
     /// `p_error` of the exact surface point, as [`crate::Hit::p_error`]) in direction `dir`, its
     /// origin moved off the surface by [`offset_ray_origin`] so it does not hit that surface again.
     /// Works for both sides: reflection (`dir . ng > 0`) and transmission (`dir . ng < 0`).
+    /// The ray is traced at time 0: [`crate::SpawnPoint`] keeps a hit's time.
     #[inline]
     pub fn spawn(p: Vec3, ng: Vec3, p_error: Vec3, dir: Vec3) -> Self {
         let dir = dir.normalize();
         Self {
             origin: offset_ray_origin(p, ng, p_error, dir),
             dir,
+            time: 0.0,
         }
     }
 
@@ -52,7 +65,7 @@ impl Ray {
     /// the distance between the two moved points less [`SHADOW_EPSILON`] of it, which covers the
     /// rounding of the target surface's own `t`. When the points are so close that the moved
     /// points coincide or pass each other, the ray has direction `ng` and `t_max = 0`, so nothing
-    /// can block it.
+    /// can block it. Like [`Ray::spawn`], the ray is traced at time 0.
     #[inline(always)]
     pub fn spawn_to(
         p: Vec3,
@@ -81,6 +94,7 @@ impl Ray {
                 Self {
                     origin,
                     dir: d / distance,
+                    time: 0.0,
                 },
                 distance * (1.0 - SHADOW_EPSILON),
             )
@@ -89,6 +103,7 @@ impl Ray {
                 Self {
                     origin,
                     dir: fallback,
+                    time: 0.0,
                 },
                 0.0,
             )

@@ -20,15 +20,33 @@ pub struct SpawnPoint {
     pub front: Vec3,
     /// `p` moved to the other side (world units).
     pub back: Vec3,
+    /// The time its rays are traced at, a fraction of the shutter interval ([`Ray::time`]).
+    pub time: f32,
 }
 
 impl SpawnPoint {
     /// The surface point `p` with unit geometric normal `ng`, each coordinate within `p_error`
-    /// of the exact surface point (world units).
+    /// of the exact surface point (world units), whose rays are traced at time 0.
     #[inline]
     pub fn new(p: Vec3, ng: Vec3, p_error: Vec3) -> Self {
         let (front, back) = offset_both_sides(p, ng, p_error);
-        Self { p, ng, front, back }
+        Self {
+            p,
+            ng,
+            front,
+            back,
+            time: 0.0,
+        }
+    }
+
+    /// The point `hit` found, whose rays are traced at the hit's time (a moving scene is seen
+    /// at one time along the whole path).
+    #[inline]
+    pub fn of(hit: &crate::Hit) -> Self {
+        Self {
+            time: hit.time,
+            ..Self::new(hit.p, hit.ng, hit.p_error)
+        }
     }
 
     /// The origin of a ray leaving towards `dir` (any length): `front` unless `dir` points below
@@ -49,6 +67,7 @@ impl SpawnPoint {
         Ray {
             origin: self.origin_towards(dir),
             dir,
+            time: self.time,
         }
     }
 
@@ -60,6 +79,7 @@ impl SpawnPoint {
         Ray {
             origin: self.origin_towards(dir),
             dir,
+            time: self.time,
         }
     }
 
@@ -69,7 +89,8 @@ impl SpawnPoint {
     pub fn spawn_to(&self, target_p: Vec3, target_ng: Vec3, target_error: Vec3) -> (Ray, f32) {
         let to_target = target_p - self.p;
         let end = crate::offset_ray_origin(target_p, target_ng, target_error, -to_target);
-        Ray::between(self.origin_towards(to_target), end, to_target, self.ng)
+        let (ray, t_max) = Ray::between(self.origin_towards(to_target), end, to_target, self.ng);
+        (ray.at_time(self.time), t_max)
     }
 }
 

@@ -17,7 +17,9 @@ pub(crate) fn delta_lights(
 ) -> Vec3 {
     let mut sum = Vec3::ZERO;
     for &index in world.delta_lights() {
-        let Some(s) = world.lights()[index as usize].sample_li(surface.hit.p, Vec2::ZERO) else {
+        let Some(s) =
+            world.lights()[index as usize].sample_li(surface.hit.p, Vec2::ZERO, surface.hit.time)
+        else {
             continue;
         };
         let wi = surface.frame.to_local(s.wi);

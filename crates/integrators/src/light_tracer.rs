@@ -17,8 +17,9 @@
 //! Each light path stands for one pixel sample: with `L` paths for an `N`-pixel image, a pixel's
 //! value gains `N / L` times the sum of the paths' contributions to it (see `render::film`).
 //!
-//! Sampler dimensions, in order, only those the scene needs (as the path tracer's): light choice
-//! (1D, with more than one area light), point on the light (2D), emitted direction (2D), then per
+//! Sampler dimensions, in order, only those the scene needs (as the path tracer's): time (1D,
+//! when something moves: the whole light path, and its connections to the camera, see the
+//! scene at that time), light choice (1D, with more than one area light), point on the light (2D), emitted direction (2D), then per
 //! vertex the aperture point of the camera connection (2D, from the second vertex on, with a
 //! thin-lens camera), the BSDF lobe (1D, when some material chooses a lobe) and direction (2D),
 //! and roulette (1D, with roulette from its start depth on).
@@ -47,6 +48,8 @@ pub struct LightTracer {
     draws_lobe_choice: bool,
     /// Whether the camera has an aperture, so each camera connection draws a point on it.
     draws_lens: bool,
+    /// Whether something moves, so each light path draws a time.
+    draws_time: bool,
 }
 
 impl LightTracer {
@@ -64,7 +67,7 @@ impl LightTracer {
             .filter(|&i| {
                 matches!(
                     world.lights()[i as usize],
-                    Light::Mesh(_) | Light::Sphere(_)
+                    Light::Mesh(_) | Light::Sphere(_) | Light::Moving(_)
                 )
             })
             .collect();
@@ -83,6 +86,7 @@ impl LightTracer {
             russian_roulette: settings.russian_roulette,
             draws_lobe_choice: world.has_lobe_choice(),
             draws_lens: camera_has_lens,
+            draws_time: world.has_motion(),
         })
     }
 
@@ -97,18 +101,23 @@ impl LightTracer {
         tally: &mut impl RayTally,
         splat: &mut impl FnMut(Vec2, Vec3),
     ) {
+        let time = if self.draws_time {
+            sampler.next_1d()
+        } else {
+            0.0
+        };
         let u_choice = next_1d_if(sampler, self.lights.len() > 1);
         let u_point = sampler.next_2d();
         let u_dir = sampler.next_2d();
         let (chosen, pmf, _) = self.selection.sample(u_choice);
         let light = &world.lights()[self.lights[chosen] as usize];
-        let Some(emitted) = light.sample_emission(u_point, u_dir) else {
+        let Some(emitted) = light.sample_emission(u_point, u_dir, time) else {
             return;
         };
         // The light the path carries is `emitted_weight * throughput`.
         let emitted_weight = emitted.weight / pmf;
         let mut throughput = Vec3::ONE;
-        let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.p_error, emitted.dir);
+        let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.p_error, emitted.dir).at_time(time);
         // The vertex about to be found, counted from the light (1 = the first hit). A connection
         // at vertex j makes a path of j + 1 vertices after the camera (j of them, and the light).
         let mut vertex = 1;
@@ -167,7 +176,7 @@ impl LightTracer {
                 return;
             }
             vertex += 1;
-            ray = Ray::spawn(surface.hit.p, ng, surface.hit.p_error, outgoing);
+            ray = Ray::spawn(surface.hit.p, ng, surface.hit.p_error, outgoing).at_time(time);
         }
     }
 }

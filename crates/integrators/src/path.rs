@@ -254,7 +254,7 @@ impl PathIntegrator {
                 break;
             }
             let wo = surface.frame.to_local(-ray.dir);
-            let point = SpawnPoint::new(surface.hit.p, surface.hit.ng, surface.hit.p_error);
+            let point = SpawnPoint::of(&surface.hit);
             if REUSE {
                 if depth == 1 {
                     first = FirstVertex::at(surface, &point, wo);
@@ -492,7 +492,12 @@ impl PathIntegrator {
             return Vec3::ZERO;
         }
         let weight = self.emission_weight(previous, Some(light), counts, || {
-            world.lights()[light as usize].pdf_li_surface(previous.p, surface.hit.p, surface.hit.ng)
+            world.lights()[light as usize].pdf_li_surface(
+                previous.p,
+                surface.hit.p,
+                surface.hit.ng,
+                surface.hit.time,
+            )
         });
         throughput * emitted * weight
     }

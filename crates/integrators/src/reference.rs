@@ -84,7 +84,7 @@ pub fn radiance(
         {
             break;
         }
-        let point = SpawnPoint::new(surface.hit.p, surface.hit.ng, surface.hit.p_error);
+        let point = SpawnPoint::of(&surface.hit);
         let wo = surface.frame.to_local(-ray.dir);
 
         let first_direct = settings.direct_samples.filter(|_| depth == 1);

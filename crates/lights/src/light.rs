@@ -2,7 +2,7 @@
 
 use crate::{
     ConstantEnvironment, DirectionalLight, EmissionSample, EnvironmentMap, LightSample,
-    MeshAreaLight, PointLight, SphereAreaLight, SpotLight, mean_rgb,
+    MeshAreaLight, MovingLight, PointLight, SphereAreaLight, SpotLight, mean_rgb,
 };
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -24,13 +24,16 @@ pub enum Light {
     Environment(ConstantEnvironment),
     /// Environment map: radiance from infinitely far away, varying with direction.
     EnvironmentMap(EnvironmentMap),
+    /// An area light on a shape that moves during the shutter.
+    Moving(MovingLight),
 }
 
 impl Light {
     /// A direction from the shading point `p` towards the light, with `u` uniform in [0, 1)².
-    /// `None` when the sample carries no light (e.g. a back-facing point).
+    /// `None` when the sample carries no light (e.g. a back-facing point). A moving light is
+    /// sampled where it is at `time`, a fraction of the shutter interval ([`geometry::Ray::time`]).
     #[inline]
-    pub fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+    pub fn sample_li(&self, p: Vec3, u: Vec2, time: f32) -> Option<LightSample> {
         match self {
             Light::Mesh(l) => l.sample_li(p, u),
             Light::Sphere(l) => l.sample_li(p, u),
@@ -39,17 +42,19 @@ impl Light {
             Light::Directional(l) => Some(l.sample_li(p)),
             Light::Environment(l) => l.sample_li(p, u),
             Light::EnvironmentMap(l) => l.sample_li(p, u),
+            Light::Moving(l) => l.sample_li(p, u, time),
         }
     }
 
     /// Light leaving an area emitter's surface (see [`EmissionSample`]), with `u_point` and
     /// `u_dir` uniform in [0, 1)²; `None` for delta lights and the environment, which light
-    /// tracing leaves to the path tracer.
+    /// tracing leaves to the path tracer. A moving light emits where it is at `time`.
     #[inline]
-    pub fn sample_emission(&self, u_point: Vec2, u_dir: Vec2) -> Option<EmissionSample> {
+    pub fn sample_emission(&self, u_point: Vec2, u_dir: Vec2, time: f32) -> Option<EmissionSample> {
         match self {
             Light::Mesh(l) => l.sample_emission(u_point, u_dir),
             Light::Sphere(l) => l.sample_emission(u_point, u_dir),
+            Light::Moving(l) => l.sample_emission(u_point, u_dir, time),
             Light::Point(_)
             | Light::Spot(_)
             | Light::Directional(_)
@@ -65,6 +70,7 @@ impl Light {
         let radiance = match self {
             Light::Mesh(l) => l.radiance(),
             Light::Sphere(l) => l.radiance,
+            Light::Moving(l) => return l.local().radiance_towards(ng, w),
             Light::Point(_)
             | Light::Spot(_)
             | Light::Directional(_)
@@ -92,12 +98,14 @@ impl Light {
 
     /// Density per steradian with which [`Self::sample_li`] from `p` would have chosen the point
     /// `p_light` with geometric normal `n_light` on this light's surface. Zero for lights without
-    /// a surface (delta lights, the environment).
+    /// a surface (delta lights, the environment). A moving light's surface is where it is at
+    /// `time`.
     #[inline]
-    pub fn pdf_li_surface(&self, p: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+    pub fn pdf_li_surface(&self, p: Vec3, p_light: Vec3, n_light: Vec3, time: f32) -> f32 {
         match self {
             Light::Mesh(l) => l.pdf_li(p, p_light, n_light),
             Light::Sphere(l) => l.pdf_li(p, p_light, n_light),
+            Light::Moving(l) => l.pdf_li(p, p_light, n_light, time),
             Light::Point(_)
             | Light::Spot(_)
             | Light::Directional(_)
@@ -140,6 +148,7 @@ impl Light {
         match self {
             Light::Mesh(l) => Some(l.bounding_sphere()),
             Light::Sphere(l) => Some((l.center, l.radius)),
+            Light::Moving(l) => Some(l.bounding_sphere()),
             Light::Point(l) => Some((l.position, 0.0)),
             Light::Spot(l) => Some((l.position(), 0.0)),
             Light::Directional(_) | Light::Environment(_) | Light::EnvironmentMap(_) => None,
@@ -187,6 +196,7 @@ impl Light {
             Light::Directional(l) => l.power(),
             Light::Environment(l) => l.power(),
             Light::EnvironmentMap(l) => l.power(),
+            Light::Moving(l) => l.power(),
         }
     }
 }

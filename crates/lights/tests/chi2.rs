@@ -51,7 +51,7 @@ fn u2(rng: &mut Rng) -> Vec2 {
 
 /// The direction of a light sample from `p`, or `None` when `sample_li` returned none.
 fn sample_wi(light: &Light, p: Vec3, rng: &mut Rng) -> Option<Vec3> {
-    light.sample_li(p, u2(rng)).map(|s| s.wi)
+    light.sample_li(p, u2(rng), 0.0).map(|s| s.wi)
 }
 
 /// Runs a sphere-domain test of `light` sampled from `p` against `pdf(wi)` and asserts it passes.
@@ -92,7 +92,7 @@ fn sphere_pdf(light: &Light, sphere: &SphereAreaLight, p: Vec3, wi: DVec3, rim_s
         } else {
             outward
         };
-        light.pdf_li_surface(p, point, normal)
+        light.pdf_li_surface(p, point, normal, 0.0)
     })
 }
 
@@ -118,7 +118,7 @@ fn mesh_pdf(light: &Light, triangles: &[[Vec3; 3]], p: Vec3, wi: Vec3) -> f32 {
             let inside = u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0;
             inside.then(|| {
                 let normal = e1.cross(e2).normalize().as_vec3();
-                light.pdf_li_surface(p, (o + t * d).as_vec3(), normal)
+                light.pdf_li_surface(p, (o + t * d).as_vec3(), normal, 0.0)
             })
         })
         .sum()

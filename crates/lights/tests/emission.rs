@@ -36,7 +36,7 @@ fn mesh_emission_is_uniform_by_area_and_cosine_distributed() {
     let (mut in_big, mut cos_sum) = (0u32, 0.0f64);
     for i in 0..SAMPLES {
         let s = light
-            .sample_emission(u2(&mut rng), u2(&mut rng))
+            .sample_emission(u2(&mut rng), u2(&mut rng), 0.0)
             .unwrap_or_else(|| panic!("seed {SEED}, sample {i}: no emission"));
         assert!(
             s.p.z.abs() < 1e-6 && s.n == Vec3::Z,
@@ -76,7 +76,7 @@ fn sphere_emission_leaves_the_emitting_side() {
         let (mut upper, mut cos_sum) = (0u32, 0.0f64);
         for i in 0..SAMPLES {
             let s = light
-                .sample_emission(u2(&mut rng), u2(&mut rng))
+                .sample_emission(u2(&mut rng), u2(&mut rng), 0.0)
                 .unwrap_or_else(|| panic!("seed {SEED}, sample {i}: no emission"));
             let outward = (s.p - sphere.center) / sphere.radius;
             assert!((outward.length() - 1.0).abs() < 1e-5, "{s:?}");

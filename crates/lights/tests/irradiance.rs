@@ -19,12 +19,12 @@ fn estimate_irradiance(light: &Light, p: Vec3, n: Vec3, seed: u32) -> f64 {
     let mut sum = 0.0_f64;
     for i in 0..SAMPLES {
         let u = Vec2::new(rng.next_f32(), rng.next_f32());
-        let Some(s) = light.sample_li(p, u) else {
+        let Some(s) = light.sample_li(p, u, 0.0) else {
             continue;
         };
         let cos = n.dot(s.wi).max(0.0);
         assert!(s.pdf_solid_angle > 0.0 && s.pdf_solid_angle.is_finite());
-        let pdf_again = light.pdf_li_surface(p, s.p_light, s.n_light);
+        let pdf_again = light.pdf_li_surface(p, s.p_light, s.n_light, 0.0);
         assert!(
             (pdf_again - s.pdf_solid_angle).abs() <= 1e-3 * s.pdf_solid_angle,
             "seed {seed}, sample {i}: sampled pdf {} but pdf_li_surface {pdf_again}",
@@ -120,7 +120,7 @@ fn back_side_of_a_mesh_light_is_dark() {
     let mut rng = Rng::new(3);
     for _ in 0..1000 {
         let u = Vec2::new(rng.next_f32(), rng.next_f32());
-        assert!(light.sample_li(Vec3::ZERO, u).is_none());
+        assert!(light.sample_li(Vec3::ZERO, u, 0.0).is_none());
     }
 }
 
@@ -141,7 +141,7 @@ fn tiny_far_sphere_stays_finite_at_u_extremes() {
         Vec2::new(0.5, one_minus),
     ] {
         let s = light
-            .sample_li(Vec3::ZERO, u)
+            .sample_li(Vec3::ZERO, u, 0.0)
             .expect("the sphere is visible");
         assert!(
             s.wi.is_finite() && (s.wi.length() - 1.0).abs() < 1e-4,
@@ -179,7 +179,7 @@ fn irradiance_estimate_is_exact_facing_a_sphere_and_never_zero_where_light_arriv
         let radius = 0.5 * rng.next_f32();
         let light = sphere_light(center, radius);
         let n = Vec3::Z;
-        let sample = light.sample_li(Vec3::ZERO, Vec2::new(rng.next_f32(), rng.next_f32()));
+        let sample = light.sample_li(Vec3::ZERO, Vec2::new(rng.next_f32(), rng.next_f32()), 0.0);
         if let Some(sample) = sample
             && sample.wi.dot(n).abs() > 0.0
         {

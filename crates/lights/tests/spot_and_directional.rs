@@ -42,13 +42,13 @@ fn spot_falloff_is_full_then_linear_in_angle_then_zero() {
     }
     // The light towards a point on the axis at distance 2: intensity / 4, pointing back.
     let sample = Light::Spot(spot)
-        .sample_li(2.0 * axis, glam::Vec2::ZERO)
+        .sample_li(2.0 * axis, glam::Vec2::ZERO, 0.0)
         .expect("lit");
     assert!((sample.radiance - Vec3::splat(0.25)).abs().max_element() < 1e-6);
     assert!((sample.wi + axis).length() < 1e-6 && sample.is_delta);
     assert!(
         Light::Spot(spot)
-            .sample_li(-axis, glam::Vec2::ZERO)
+            .sample_li(-axis, glam::Vec2::ZERO, 0.0)
             .is_none()
     );
 }

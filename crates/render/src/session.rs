@@ -365,7 +365,10 @@ fn render_sampled<T: RayTally + Default + Send>(
 ) -> Result<RenderOutput, BudgetError> {
     let (seed, spp) = (context.plan.seed, context.plan.sampler_spp);
     let built = Integrators::new(context.scene, context.plan);
-    let prefix = built.pattern_dimensions(context.view.camera.has_lens());
+    let prefix = built.pattern_dimensions(
+        context.view.camera.has_lens(),
+        context.scene.world.has_motion(),
+    );
     match context.plan.sampler {
         SamplerKind::Independent => {
             render_with(context, &built, || IndependentSampler::new(seed, spp))
@@ -413,14 +416,16 @@ impl Integrators {
     }
 
     /// The leading dimensions of each pixel sample drawn from the sampler's pattern: the
-    /// camera's (film position, and the lens point with a lens) and the first
+    /// camera's (film position, the lens point with a lens, the time with motion) and the first
     /// [`PATTERN_VERTICES`] vertices' of the path tracer; all of them for the reference
     /// integrator, which has no tricks. A light path drawn with the same sampler gets as many.
-    fn pattern_dimensions(&self, has_lens: bool) -> u32 {
+    fn pattern_dimensions(&self, has_lens: bool, has_motion: bool) -> u32 {
         match &self.integrator {
             BuiltTransport::Reference(_) => u32::MAX,
             BuiltTransport::Path(path) => {
-                1 + u32::from(has_lens) + path.sampler_dimensions(PATTERN_VERTICES)
+                1 + u32::from(has_lens)
+                    + u32::from(has_motion)
+                    + path.sampler_dimensions(PATTERN_VERTICES)
             }
         }
     }
@@ -523,6 +528,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     let light_paths: Option<&LightPaths<'_, Worker<'_, S, T>>> =
         (costs.is_none() && light_tracer.is_some()).then_some(&trace_light_path);
     let has_lens = camera.has_lens();
+    let has_motion = world.has_motion();
     let signed_filter = filter.has_negative_lobes();
     let new_worker = || Worker {
         sampler: new_sampler(),
@@ -552,7 +558,11 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         } else {
             Vec2::ZERO
         };
-        (camera.generate_ray(film_position, u_lens), film_position)
+        // The time the whole path sees the scene at, uniform over the shutter.
+        let time = if has_motion { sampler.next_1d() } else { 0.0 };
+        let mut camera_ray = camera.generate_ray(film_position, u_lens);
+        camera_ray.ray.time = time;
+        (camera_ray, film_position)
     };
     let filter_weight = |radiance: Vec3, film_position: Vec2, pixel: UVec2| {
         if signed_filter && !uniform_in_pixel {

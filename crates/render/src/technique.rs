@@ -165,7 +165,9 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             Some(ReuseFlag::Block(block)) => Some(PathReuse { block }),
             Some(ReuseFlag::Off) | None => None,
         }
-        .filter(|_| settings.reuse_applies());
+        // Path reuse joins paths of different pixels, which in a scene with motion see it at
+        // different times.
+        .filter(|_| settings.reuse_applies() && !features.has_motion);
         // A saved or resumed render keeps the base: its parts may have different budgets, and
         // a pilot's choice could differ between them. What the user pinned is not tried.
         if is_auto && args.state.is_none() && args.resume.is_none() {
@@ -191,6 +193,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
                 no_light_tracing: settings.light_tracing && !args.light_tracing,
                 path_reuse: args.path_reuse.is_none()
                     && !args.light_tracing
+                    && !features.has_motion
                     && features.has_diffuse_bsdfs
                     && reusing.reuse_applies(),
             };
@@ -318,6 +321,7 @@ mod tests {
             has_glossy_bsdfs: false,
             has_null_lobes: false,
             has_diffuse_bsdfs: true,
+            has_motion: false,
         }
     }
 

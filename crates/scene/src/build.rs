@@ -8,10 +8,10 @@ use crate::{
     BsdfDesc, EmitterDesc, Geometry, LoadError, MicrofacetDistribution, Roughness, SceneDesc,
     ShapeDesc,
 };
-use geometry::{Accel, Shape, Sphere, TriangleMesh};
+use geometry::{Aabb, Accel, Motion, Shape, Sphere, TriangleMesh};
 use lights::{
-    ConstantEnvironment, DirectionalLight, EnvironmentMap, Light, MeshAreaLight, PointLight,
-    SphereAreaLight, SpotLight,
+    ConstantEnvironment, DirectionalLight, EnvironmentMap, Light, MeshAreaLight, MovingLight,
+    PointLight, SphereAreaLight, SpotLight,
 };
 use materials::{
     Blend, Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
@@ -81,14 +81,32 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
     textures.resize(materials.len(), None);
 
     let mut shapes = Vec::with_capacity(desc.shapes.len());
+    let mut moving = Vec::new();
     let mut shape_material = Vec::with_capacity(desc.shapes.len());
     let mut shape_light = Vec::with_capacity(desc.shapes.len());
     let mut lights = Vec::new();
     let mut light_weights = Vec::new();
-    for shape in &desc.shapes {
-        if let Some(emitter) = shape.emitter
-            && let Some(light) = area_light(shape, emitter.radiance)
-        {
+    // Static shapes first, then the moving ones (the order the acceleration structure numbers
+    // them in).
+    let (fixed, animated): (Vec<&ShapeDesc>, Vec<&ShapeDesc>) =
+        desc.shapes.iter().partition(|shape| shape.motion.is_none());
+    for shape in fixed.into_iter().chain(animated) {
+        let motion = shape
+            .motion
+            .as_ref()
+            .map(|m| Motion::new(m.clone(), desc.sensor.shutter));
+        let light = shape
+            .emitter
+            .and_then(|emitter| Some((area_light(shape, emitter.radiance)?, emitter)));
+        let light = match (light, &motion) {
+            (Some((light, emitter)), Some(motion)) => {
+                let bounds = object_bounds(&shape.geometry);
+                MovingLight::new(light, motion.clone(), &bounds)
+                    .map(|light| (Light::Moving(light), emitter))
+            }
+            (light, _) => light,
+        };
+        if let Some((light, emitter)) = light {
             shape_light.push(Some(lights.len() as u32));
             lights.push(light);
             light_weights.push(emitter.sampling_weight);
@@ -96,9 +114,13 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
             shape_light.push(None);
         }
         shape_material.push(shape.bsdf as u32);
-        shapes.push(runtime_shape(shape));
+        match motion {
+            Some(motion) => moving.push((runtime_shape(shape), motion)),
+            None => shapes.push(runtime_shape(shape)),
+        }
     }
-    let accel = Accel::new(shapes);
+    let accel = Accel::with_moving(shapes, moving);
+    let accel_has_motion = accel.has_motion();
     let bounds = accel.bounds();
     let scene_radius = if bounds.min.is_finite() && bounds.max.is_finite() {
         0.5 * (bounds.max - bounds.min).length()
@@ -153,7 +175,7 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
         });
         light_weights.push(emitter.sampling_weight());
     }
-    let features = SceneFeatures::of(&materials, &lights);
+    let features = SceneFeatures::of(&materials, &lights, accel_has_motion);
     let mut world = World::new(
         accel,
         materials,
@@ -198,6 +220,17 @@ fn runtime_shape(shape: &ShapeDesc) -> Shape {
             flip_normals: s.flip_normals,
             to_local: s.to_local,
         }),
+    }
+}
+
+/// The bounds of `geometry` in its own space (world units).
+fn object_bounds(geometry: &Geometry) -> Aabb {
+    match geometry {
+        Geometry::Mesh(mesh) => Aabb::from_points(mesh.positions.iter().copied()),
+        Geometry::Sphere(s) => Aabb::new(
+            s.center - glam::Vec3::splat(s.radius),
+            s.center + glam::Vec3::splat(s.radius),
+        ),
     }
 }
 

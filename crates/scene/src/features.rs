@@ -25,6 +25,9 @@ pub struct SceneFeatures {
     /// True when some material is Lambertian (`diffuse`, or a `twosided` with one on either
     /// side), which path reuse can connect.
     pub has_diffuse_bsdfs: bool,
+    /// True when some shape moves while the shutter is open: each camera sample then draws a
+    /// time, and path reuse (which joins paths of different pixels) does not apply.
+    pub has_motion: bool,
 }
 
 impl SceneFeatures {
@@ -38,8 +41,9 @@ impl SceneFeatures {
         self.area_light_count + usize::from(self.has_environment) < self.light_count
     }
 
-    /// The features of a scene with these materials and lights.
-    pub fn of(materials: &[Bsdf], lights: &[Light]) -> Self {
+    /// The features of a scene with `materials` and `lights`, in which something moves while
+    /// the shutter is open when `has_motion`.
+    pub fn of(materials: &[Bsdf], lights: &[Light], has_motion: bool) -> Self {
         Self {
             light_count: lights.len(),
             has_non_delta_bsdfs: materials.iter().any(|m| !m.flags().is_delta()),
@@ -48,7 +52,7 @@ impl SceneFeatures {
                 .any(|m| m.flags().contains(BsdfFlags::DELTA)),
             area_light_count: lights
                 .iter()
-                .filter(|l| matches!(l, Light::Mesh(_) | Light::Sphere(_)))
+                .filter(|l| matches!(l, Light::Mesh(_) | Light::Sphere(_) | Light::Moving(_)))
                 .count(),
             has_environment: lights.iter().any(Light::is_environment),
             has_glossy_bsdfs: materials
@@ -64,6 +68,7 @@ impl SceneFeatures {
                     .any(|side| matches!(side, Bsdf::Diffuse(_))),
                 _ => false,
             }),
+            has_motion,
         }
     }
 }

@@ -19,6 +19,15 @@ pub(crate) enum ColorKind {
     Emission,
 }
 
+/// Where a transform parameter puts something: fixed, or moving over time.
+#[derive(Debug, Clone)]
+pub(crate) enum Placement {
+    /// A `<transform>`.
+    Fixed(DMat4),
+    /// An `<animation>` (Strata's extension for motion blur).
+    Animated(geometry::AnimatedTransform),
+}
+
 /// The properties of one plugin object being interpreted.
 pub(crate) struct Params<'a> {
     node: &'a ObjectNode,
@@ -147,7 +156,7 @@ impl<'a> Params<'a> {
         }
     }
 
-    /// A transform parameter.
+    /// A transform parameter of something that cannot move.
     pub fn transform(&mut self, name: &'static str) -> Result<Option<DMat4>> {
         match self.find(name) {
             None => Ok(None),
@@ -156,11 +165,23 @@ impl<'a> Params<'a> {
                 Value::Animation(ref animation) => {
                     let (first, last) = animation.time_range();
                     Err(prop.loc.error(format!(
-                        "\"{}\" is animated (times {first} to {last}), which Strata reads but \
-                         cannot render yet (motion blur); give a <transform>",
+                        "\"{}\" is animated (times {first} to {last}), but only a shape can \
+                         move (motion blur); give a <transform>",
                         prop.name
                     )))
                 }
+                _ => Err(wrong_type(prop, "transform")),
+            },
+        }
+    }
+
+    /// A transform parameter that may move: a `<transform>` or an `<animation>`.
+    pub fn placement(&mut self, name: &'static str) -> Result<Option<Placement>> {
+        match self.find(name) {
+            None => Ok(None),
+            Some(prop) => match prop.value {
+                Value::Transform(m) => Ok(Some(Placement::Fixed(m))),
+                Value::Animation(ref animation) => Ok(Some(Placement::Animated(animation.clone()))),
                 _ => Err(wrong_type(prop, "transform")),
             },
         }

@@ -25,6 +25,11 @@ pub(crate) fn camera_relative(desc: &mut SceneDesc) {
     desc.sensor.to_world = Mat4::from_translation(-offset) * desc.sensor.to_world;
     desc.sensor.to_world.w_axis = glam::Vec4::W;
     for shape in &mut desc.shapes {
+        if let Some(motion) = &mut shape.motion {
+            // Its geometry is in object space: the motion moves instead.
+            *motion = motion.translated(-offset.as_dvec3());
+            continue;
+        }
         match &mut shape.geometry {
             Geometry::Mesh(mesh) => mesh.positions.iter_mut().for_each(|p| *p -= offset),
             Geometry::Sphere(sphere) => sphere.center -= offset,

@@ -534,16 +534,42 @@ fn animations() {
         "time",
     );
     expect(
-        "moving_cube.xml",
+        "mirrored.xml",
         &shape(&format!(
             "{}\n{}",
             key("0", ""),
-            key("1", "<translate x=\"1\"/>")
+            key("1", "<scale x=\"-1\"/>")
         )),
         5,
         "<animation name=\"to_world\">",
-        "cannot render yet",
+        "must not mirror",
     );
+    let moves = "<animation name=\"to_world\">\n<transform time=\"0\"/>\n<transform time=\"1\"><translate x=\"1\"/></transform>\n</animation>";
+    expect(
+        "moving_light.xml",
+        &wrap(&format!("<emitter type=\"point\">\n{moves}\n</emitter>")),
+        5,
+        "<animation name=\"to_world\">",
+        "only a shape can move",
+    );
+    expect(
+        "moving_in_group.xml",
+        &wrap(&format!(
+            "<shape type=\"shapegroup\" id=\"g\">\n<shape type=\"cube\">\n{moves}\n</shape>\n</shape>\n<shape type=\"instance\"><ref id=\"g\"/></shape>"
+        )),
+        5,
+        "<shape type=\"cube\">",
+        "cannot move",
+    );
+    let moving = wrap(&format!(
+        "<shape type=\"cube\">\n<animation name=\"to_world\">\n{}\n{}\n</animation>\n</shape>",
+        key("0", ""),
+        key("1", "<translate x=\"1\"/>")
+    ));
+    let scene = common::load("moving_cube.xml", &moving).expect("a moving cube loads");
+    let cube = scene.shapes.last().expect("the cube");
+    let motion = cube.motion.as_ref().expect("the cube moves");
+    assert_eq!(motion.time_range(), (0.0, 1.0));
     expect(
         "shutter.xml",
         "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<float name=\"shutter_open\" value=\"1\"/>\n<float name=\"shutter_close\" value=\"0.5\"/>\n</sensor>\n</scene>",

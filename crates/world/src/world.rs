@@ -117,7 +117,7 @@ impl World {
                 "light selection weight {w} is not positive and finite"
             ));
         }
-        let shape_count = accel.shapes().len();
+        let shape_count = accel.shape_count();
         if shape_material.len() != shape_count || shape_light.len() != shape_count {
             return Err(format!(
                 "{shape_count} shapes but {} material and {} light assignments",
@@ -343,6 +343,13 @@ impl World {
             .any(|m| m.flags().contains(BsdfFlags::NULL))
     }
 
+    /// Whether some shape moves during the shutter: then each camera sample draws a time and
+    /// every ray of its path carries it.
+    #[inline]
+    pub fn has_motion(&self) -> bool {
+        self.accel.has_motion()
+    }
+
     /// The acceleration structure over all shapes.
     #[inline]
     pub fn accel(&self) -> &Accel {
@@ -425,14 +432,15 @@ impl World {
                 return Some(self.surface(hit, ray.dir, slot));
             }
             // Mitsuba's rays past an emitter are not clipped again.
-            ray = Ray::spawn(hit.p, hit.ng, hit.p_error, ray.dir);
+            ray = Ray::spawn(hit.p, hit.ng, hit.p_error, ray.dir).at_time(hit.time);
             t_max = f32::INFINITY;
         }
     }
 
     /// True when nothing blocks the ray from `origin` in the unit direction `dir` for
     /// `0 < t < t_max` (a shadow ray from [`Ray::between`], given as 16-byte vectors as
-    /// [`geometry::Rayx4::lanes`] makes them), told to `tally` as one shadow ray.
+    /// [`geometry::Rayx4::lanes`] makes them), told to `tally` as one shadow ray. Static
+    /// shapes only: not for a world with motion ([`World::has_motion`]).
     #[inline(always)]
     pub fn wide_ray_unoccluded(
         &self,
@@ -444,6 +452,7 @@ impl World {
         let ray = Ray {
             origin: origin.into(),
             dir: dir.into(),
+            time: 0.0,
         };
         tally.shadow_ray(&ray, t_max);
         !self.accel.occluded_wide(origin, dir, t_max)
@@ -455,6 +464,7 @@ impl World {
     pub fn unoccluded(&self, hit: &Hit, target: Vec3, tally: &mut impl RayTally) -> bool {
         let (ray, distance) =
             Ray::spawn_to(hit.p, hit.ng, hit.p_error, target, Vec3::ZERO, Vec3::ZERO);
+        let ray = ray.at_time(hit.time);
         self.ray_unoccluded(&ray, distance, tally)
     }
 

@@ -282,6 +282,7 @@ mod tests {
             has_glossy_bsdfs: false,
             has_null_lobes: false,
             has_diffuse_bsdfs: true,
+            has_motion: false,
         }
     }
 

@@ -2,6 +2,7 @@
 
 mod build;
 mod collapse;
+mod moving;
 mod node;
 mod prim;
 mod query;
@@ -10,7 +11,8 @@ mod walk;
 
 use glam::{Vec2, Vec3, Vec3A};
 
-use crate::{Aabb, Hit, Ray, Shape, Sphere};
+use crate::{Aabb, Hit, Motion, Ray, Shape, Sphere};
+use moving::MovingShape;
 use node::Node;
 use prim::{Found, Geometry, PrimInfo, direction_of};
 use query::RayQuery;
@@ -38,6 +40,8 @@ pub struct Accel {
     /// query, sized to `stack_need`) for trees too deep for the fixed stack.
     stack: StackKind,
     stack_need: usize,
+    /// Shapes that move during the shutter, numbered after the static ones.
+    moving: Vec<MovingShape>,
 }
 
 impl Accel {
@@ -57,24 +61,81 @@ impl Accel {
             bounds: built.bounds,
             stack: StackKind::for_need(built.stack_need),
             stack_need: built.stack_need,
+            moving: Vec::new(),
         }
     }
 
-    /// The shapes, in the order given to [`Accel::new`] ([`Hit::shape`] indexes this).
+    /// The hierarchy over the static `shapes` with the shapes in `moving` (object space, each
+    /// with its motion during the shutter) after them: shape `shapes.len() + i` of a [`Hit`] is
+    /// `moving[i]`.
+    pub fn with_moving(shapes: Vec<Shape>, moving: Vec<(Shape, Motion)>) -> Accel {
+        let mut accel = Accel::new(shapes);
+        accel.moving = moving
+            .into_iter()
+            .map(|(shape, motion)| MovingShape::new(shape, motion))
+            .collect();
+        accel
+    }
+
+    /// How many shapes there are, static and moving.
+    pub fn shape_count(&self) -> usize {
+        self.shapes.len() + self.moving.len()
+    }
+
+    /// Whether some shape moves during the shutter, so rays need a time.
+    pub fn has_motion(&self) -> bool {
+        self.moving.iter().any(|m| m.motion.moves())
+    }
+
+    /// Shape `id` (numbered as in [`Hit::shape`]) in its own space, with its motion if it moves.
+    pub fn shape(&self, id: u32) -> (&Shape, Option<&Motion>) {
+        match self.shapes.get(id as usize) {
+            Some(shape) => (shape, None),
+            None => {
+                let moving = &self.moving[id as usize - self.shapes.len()];
+                (moving.shape(), Some(&moving.motion))
+            }
+        }
+    }
+
+    /// The static shapes, in the order given to [`Accel::new`] ([`Hit::shape`] indexes this,
+    /// then the moving shapes).
     pub fn shapes(&self) -> &[Shape] {
         &self.shapes
     }
 
-    /// World-space bounds of everything a ray can hit ([`Aabb::EMPTY`] for an empty scene).
+    /// World-space bounds of everything a ray can hit ([`Aabb::EMPTY`] for an empty scene),
+    /// moving shapes over the whole shutter.
     pub fn bounds(&self) -> Aabb {
-        self.bounds
+        self.moving
+            .iter()
+            .fold(self.bounds, |b, moving| b.union(moving.swept))
     }
 
     /// The closest surface along `ray` with `0 < t < t_max`, if any.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        self.intersect_wide(ray.origin.into(), ray.dir.into(), t_max)
-            .map(WideHit::into_hit)
+        let found = self
+            .intersect_wide(ray.origin.into(), ray.dir.into(), t_max)
+            .map(|hit| hit.into_hit(ray.time));
+        if self.moving.is_empty() {
+            found
+        } else {
+            self.intersect_moving(ray, t_max, found)
+        }
+    }
+
+    /// `found`, or the closest hit of a moving shape before it (and before `t_max`).
+    #[inline(never)]
+    fn intersect_moving(&self, ray: &Ray, t_max: f32, mut found: Option<Hit>) -> Option<Hit> {
+        let first = self.shapes.len() as u32;
+        for (i, moving) in self.moving.iter().enumerate() {
+            let t_max = found.map_or(t_max, |hit| hit.t);
+            if let Some(hit) = moving.intersect(ray, t_max, first + i as u32) {
+                found = Some(hit);
+            }
+        }
+        found
     }
 
     /// [`Accel::intersect`] for the ray from `origin` in the unit direction `dir`.
@@ -106,11 +167,19 @@ impl Accel {
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.occluded_wide(ray.origin.into(), ray.dir.into(), t_max)
+            || (!self.moving.is_empty() && self.occluded_moving(ray, t_max))
     }
 
-    /// [`Accel::occluded`] for the ray from `origin` in the unit direction `dir`, both given
-    /// as 16-byte vectors (as [`crate::Rayx4::lanes`] makes them), so that a caller holding
-    /// rays in that form hands them over in registers.
+    /// Whether a moving shape blocks `ray` before `t_max`.
+    #[inline(never)]
+    fn occluded_moving(&self, ray: &Ray, t_max: f32) -> bool {
+        self.moving.iter().any(|m| m.occluded(ray, t_max))
+    }
+
+    /// [`Accel::occluded`] by static shapes only for the ray from `origin` in the unit
+    /// direction `dir`, both given as 16-byte vectors (as [`crate::Rayx4::lanes`] makes them),
+    /// so that a caller holding rays in that form hands them over in registers. Such rays have
+    /// no time: a caller must not use it where something moves ([`Accel::has_motion`]).
     #[inline(never)]
     pub fn occluded_wide(&self, origin: Vec3A, dir: Vec3A, t_max: f32) -> bool {
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= 0.0 {
@@ -140,16 +209,17 @@ impl Accel {
     /// `theta` from +z. Computed on request, since shading without textures never asks (a
     /// sphere's costs an `atan2` and an `acos`).
     pub fn uv(&self, hit: &Hit) -> Vec2 {
-        match &self.shapes[hit.shape as usize] {
-            Shape::Mesh(mesh) => {
+        match self.shape(hit.shape) {
+            (Shape::Mesh(mesh), _) => {
                 let b = hit.bary;
                 mesh.uvs.as_ref().map_or(Vec2::new(b.y, b.z), |uv| {
                     let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
                     uv[i0] * b.x + uv[i1] * b.y + uv[i2] * b.z
                 })
             }
-            Shape::Sphere(sphere) => {
-                let outward = if sphere.flip_normals { -hit.ng } else { hit.ng };
+            (Shape::Sphere(sphere), motion) => {
+                let ng = motion.map_or(hit.ng, |m| m.at(hit.time).normal_to_object(hit.ng));
+                let outward = if sphere.flip_normals { -ng } else { ng };
                 Sphere::uv(sphere.to_local * outward)
             }
         }
@@ -162,31 +232,34 @@ impl Accel {
     /// growing φ about its own z axis (zero at the poles). A shading frame for anisotropic BSDFs
     /// starts from it; computed on request.
     pub fn dp_du(&self, hit: &Hit) -> Vec3 {
-        match &self.shapes[hit.shape as usize] {
+        let (shape, motion) = self.shape(hit.shape);
+        let ng = motion.map_or(hit.ng, |m| m.at(hit.time).normal_to_object(hit.ng));
+        let local = match shape {
             Shape::Mesh(mesh) => {
                 let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
                 let p = &mesh.positions;
                 let (dp0, dp1) = (p[i1] - p[i0], p[i2] - p[i0]);
-                let Some(uv) = &mesh.uvs else {
-                    return dp0;
-                };
-                let (duv0, duv1) = (uv[i1] - uv[i0], uv[i2] - uv[i0]);
-                let det = duv0.x * duv1.y - duv0.y * duv1.x;
-                if det == 0.0 {
-                    return Vec3::ZERO;
+                match &mesh.uvs {
+                    None => dp0,
+                    Some(uv) => {
+                        let (duv0, duv1) = (uv[i1] - uv[i0], uv[i2] - uv[i0]);
+                        let det = duv0.x * duv1.y - duv0.y * duv1.x;
+                        if det == 0.0 {
+                            return Vec3::ZERO;
+                        }
+                        (duv1.y * dp0 - duv0.y * dp1) / det
+                    }
                 }
-                (duv1.y * dp0 - duv0.y * dp1) / det
             }
             Shape::Sphere(sphere) => {
-                let outward = if sphere.flip_normals { -hit.ng } else { hit.ng };
+                let outward = if sphere.flip_normals { -ng } else { ng };
                 let local = sphere.to_local * outward;
                 sphere.to_local.transpose() * Vec3::new(-local.y, local.x, 0.0)
             }
-        }
+        };
+        motion.map_or(local, |m| moving::vector_at(m, hit, local))
     }
 
-    /// Completes the hit that traversal found along the ray from `origin` in the unit direction
-    /// `dir`.
     fn surface_hit(&self, origin: Vec3, dir: Vec3, found: Found) -> WideHit {
         match found {
             Found::Triangle { packet, lane, hit } => {
@@ -265,8 +338,9 @@ impl WideHit {
 
     /// The [`Hit`] this record holds.
     #[inline(always)]
-    fn into_hit(self) -> Hit {
+    fn into_hit(self, time: f32) -> Hit {
         Hit {
+            time,
             t: self.t,
             p: self.p.into(),
             p_error: self.p_error.into(),

@@ -92,7 +92,12 @@ fn evaluate(
     // reloaded from there in pieces that straddle how it was stored, would stall.
     match light {
         Light::Mesh(mesh) => with_bsdf(mesh.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
-        light => with_bsdf(light.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
+        light => with_bsdf(
+            light.sample_li(surface.hit.p, u_point, surface.hit.time)?,
+            pmf,
+            surface,
+            wo,
+        ),
     }
 }
 

@@ -63,4 +63,8 @@ pub struct ShapeDesc {
     pub bsdf: usize,
     /// The area light on this shape, if any.
     pub emitter: Option<AreaEmitterDesc>,
+    /// For a shape that moves (an `<animation>` as its `to_world`, Strata's extension for
+    /// motion blur): its object-to-scene-frame transform over time, and `geometry` is in
+    /// object space. `None` for a static shape, whose `geometry` is in the scene frame.
+    pub motion: Option<geometry::AnimatedTransform>,
 }

@@ -137,6 +137,11 @@ fn group_shapes<'a>(group: &'a ObjectNode, bsdfs: &mut BsdfTable<'a>) -> Result<
                 .loc
                 .error("a shapegroup's shapes cannot emit (Mitsuba does not instance emitters)"));
         }
+        if shape.motion.is_some() {
+            return Err(object.loc.error(
+                "a shapegroup's shapes cannot move (<animation>): animate a shape of its own",
+            ));
+        }
         shapes.push(shape);
     }
     Ok(shapes)

@@ -13,7 +13,7 @@ use crate::mesh::obj::read_obj;
 use crate::mesh::place::{Mirroring, Shading, place};
 use crate::mesh::ply::read_ply;
 use crate::mesh::serialized::read_serialized;
-use crate::params::Params;
+use crate::params::{Params, Placement};
 use crate::xml::tree::{Child, ObjectNode};
 
 /// The shape plugins this loader understands.
@@ -62,10 +62,26 @@ pub(crate) fn shape<'a>(
     }
 
     let mut params = Params::new(node);
-    let to_world = params.transform("to_world")?.unwrap_or(DMat4::IDENTITY);
+    // A moving shape keeps its geometry in object space and its motion beside it.
+    let (to_world, motion) = match params.placement("to_world")? {
+        None => (DMat4::IDENTITY, None),
+        Some(Placement::Fixed(m)) => (m, None),
+        Some(Placement::Animated(animation)) => {
+            if animation.mirrors() {
+                return Err(params
+                    .loc_of("to_world")
+                    .error("an animated to_world must not mirror (use flip_normals)"));
+            }
+            (DMat4::IDENTITY, Some(animation.translated(-origin)))
+        }
+    };
     let to_world_loc = params.loc_of("to_world");
     check_invertible(&to_world, to_world_loc)?;
-    let to_world = DMat4::from_translation(-origin) * to_world;
+    let to_world = if motion.is_some() {
+        to_world
+    } else {
+        DMat4::from_translation(-origin) * to_world
+    };
     let flip_normals = params.boolean_or("flip_normals", false)?;
     let geometry = match node.plugin.as_str() {
         "sphere" => Geometry::Sphere(sphere(&mut params, &to_world, flip_normals)?),
@@ -114,6 +130,7 @@ pub(crate) fn shape<'a>(
             (None, None) => bsdfs.default_bsdf(),
         },
         emitter,
+        motion,
     })
 }
 
