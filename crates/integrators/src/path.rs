@@ -95,8 +95,12 @@ impl ShadowedLight {
 }
 
 impl PathIntegrator {
-    /// The integrator for `world` with `settings`.
-    pub fn new(world: &World, settings: PathSettings) -> Self {
+    /// The integrator for `world` with `settings`, without path reuse where something moves
+    /// (it joins paths of different pixels, which see the scene at different times).
+    pub fn new(world: &World, mut settings: PathSettings) -> Self {
+        if world.has_motion() {
+            settings.path_reuse = None;
+        }
         Self {
             settings,
             selector: LightSelector::new(

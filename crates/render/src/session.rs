@@ -233,6 +233,7 @@ fn choose_techniques(
                 sampler_spp: auto::PILOT_SPP,
                 adaptive: false,
                 trials: Trials::default(),
+                independent_time: plan.independent_time,
             };
             let context = Context {
                 view,
@@ -529,6 +530,9 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         (costs.is_none() && light_tracer.is_some()).then_some(&trace_light_path);
     let has_lens = camera.has_lens();
     let has_motion = world.has_motion();
+    // For `RenderPlan::independent_time`: the time from a stream of its own, keyed like the
+    // sampler by (pixel, sample index), never from the pattern.
+    let time_seed = plan.independent_time.then_some(plan.seed ^ 0x7135_9e37);
     let signed_filter = filter.has_negative_lobes();
     let new_worker = || Worker {
         sampler: new_sampler(),
@@ -559,7 +563,11 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             Vec2::ZERO
         };
         // The time the whole path sees the scene at, uniform over the shutter.
-        let time = if has_motion { sampler.next_1d() } else { 0.0 };
+        let time = match (has_motion, time_seed) {
+            (false, _) => 0.0,
+            (true, None) => sampler.next_1d(),
+            (true, Some(seed)) => sampling::Rng::for_sample(pixel, sample_index, seed).next_f32(),
+        };
         let mut camera_ray = camera.generate_ray(film_position, u_lens);
         camera_ray.ray.time = time;
         (camera_ray, film_position)

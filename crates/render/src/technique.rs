@@ -64,6 +64,10 @@ pub struct RenderPlan {
     /// What `auto` measures on the scene before rendering (see [`crate::auto`]); nothing for
     /// the other presets. `transport` is then the base the trials switch from.
     pub trials: Trials,
+    /// Where something moves, draw each camera sample's time from independent numbers instead
+    /// of the sampler's pattern: how `render-all` measures what stratifying time buys. Off in
+    /// every render a user asks for.
+    pub independent_time: bool,
 }
 
 impl RenderPlan {
@@ -77,6 +81,7 @@ impl RenderPlan {
             sampler_spp: spp,
             adaptive: false,
             trials: Trials::default(),
+            independent_time: false,
         }
     }
 }
@@ -239,6 +244,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         sampler_spp: budget.max_spp.unwrap_or(TIME_BUDGET_NOMINAL_SPP),
         adaptive,
         trials,
+        independent_time: false,
     }
 }
 

@@ -28,6 +28,9 @@ pub struct Configuration {
     /// which stand on their own). Not always the rung above it: `+roulette` builds on `mis`,
     /// not on the light-selection rungs listed between them.
     pub builds_on: Option<String>,
+    /// Whether each camera sample's time comes from independent numbers rather than the
+    /// sampler's pattern (see `RenderPlan::independent_time`).
+    pub independent_time: bool,
 }
 
 impl Configuration {
@@ -37,6 +40,9 @@ impl Configuration {
     pub fn techniques(&self) -> Vec<String> {
         let mut names = self.transport.technique_names();
         names.push(format!("sampler-{}", self.sampler));
+        if self.independent_time {
+            names.push("time-independent".to_string());
+        }
         if self.adaptive {
             names.push("adaptive-sampling".to_string());
         }
@@ -104,7 +110,9 @@ impl SceneTransport {
 /// share), each on + adaptive; and `auto`: the plan `strata render` makes without flags, whose
 /// pilot chooses its techniques on the scene. BSDF-only is left out when the scene has delta
 /// lights (paths cannot hit them) or no lights; the NEE and MIS rungs when no light can be
-/// sampled; MIS when no light can be hit (it equals NEE there).
+/// sampled; MIS when no light can be hit (it equals NEE there). Where something moves, a Sobol
+/// rung with independent times (`sobol-random-time`) comes between + roulette and + Sobol, so
+/// that + Sobol's gain is what stratifying time buys; path reuse then does not apply.
 pub fn ladder(
     transport: &SceneTransport,
     features: &SceneFeatures,
@@ -118,6 +126,7 @@ pub fn ladder(
             adaptive: false,
             trials: Trials::default(),
             builds_on: builds_on.map(str::to_string),
+            independent_time: false,
         };
     let independent = SamplerKind::Independent;
     let mis = transport.mis();
@@ -133,6 +142,7 @@ pub fn ladder(
         adaptive: false,
         trials: Trials::default(),
         builds_on: None,
+        independent_time: false,
     }];
     let no_nee = PathSettings {
         sample_lights: false,
@@ -209,7 +219,27 @@ pub fn ladder(
         SamplerKind::BlueNoise,
         on_roulette,
     ));
-    rungs.push(rung("+sobol", roulette, SamplerKind::Sobol, on_roulette));
+    if features.has_motion {
+        // What stratifying time buys (the lecture's motion blur): Sobol with the time from
+        // independent numbers, which `+sobol` then builds on.
+        rungs.push(Configuration {
+            independent_time: true,
+            ..rung(
+                "sobol-random-time",
+                roulette,
+                SamplerKind::Sobol,
+                on_roulette,
+            )
+        });
+        rungs.push(rung(
+            "+sobol",
+            roulette,
+            SamplerKind::Sobol,
+            Some("sobol-random-time"),
+        ));
+    } else {
+        rungs.push(rung("+sobol", roulette, SamplerKind::Sobol, on_roulette));
+    }
     rungs.push(Configuration {
         adaptive: true,
         ..rung("+adaptive", roulette, SamplerKind::Sobol, Some("+sobol"))
@@ -252,6 +282,7 @@ pub fn ladder(
         adaptive: auto.adaptive,
         trials: auto.trials,
         builds_on: None,
+        independent_time: false,
     });
     rungs
 }

@@ -63,7 +63,7 @@ impl SuiteScene {
                 integrator.skip_null_vertices,
             ),
             skip_null_vertices: integrator.skip_null_vertices,
-            path_reuse: self.scene.features.has_diffuse_bsdfs,
+            path_reuse: self.scene.features.has_diffuse_bsdfs && !self.scene.features.has_motion,
         }
     }
 }

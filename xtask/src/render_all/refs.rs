@@ -32,6 +32,7 @@ const REFERENCE_SPP: &[(&str, u32)] = &[
     ("cbox-smalllight", 3840),
     ("furnace", 2048),
     ("manylights", 15200),
+    ("motion", 3072),
     ("pointlight", 18400),
     ("softshadow", 15200),
     ("thinlens", 16000),

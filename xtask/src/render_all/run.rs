@@ -280,6 +280,7 @@ fn render(
                     .max_spp
                     .is_none_or(|spp| spp >= AUTO_ADAPTIVE_MIN_SPP)),
         trials: configuration.trials,
+        independent_time: configuration.independent_time,
     };
     render_scene(&suite.scene, &plan, &filter, &RenderOptions::quiet())
         .map(|(output, _)| output)

@@ -130,6 +130,24 @@ impl Replicates {
         }
     }
 
+    /// The exactly known expectation `image` (row-major, `width × height`) as a replicate set
+    /// without variance: an oracle computed rather than rendered.
+    pub fn exact(label: &str, width: u32, height: u32, image: Vec<DVec3>) -> Self {
+        assert_eq!(
+            image.len(),
+            (width * height) as usize,
+            "{label}: image size"
+        );
+        Self {
+            label: label.to_string(),
+            width,
+            height,
+            seeds: vec![0, 0],
+            spp: 0,
+            images: vec![image.clone(), image],
+        }
+    }
+
     /// Number of replicates.
     pub fn count(&self) -> usize {
         self.images.len()

@@ -8,7 +8,9 @@
 //!
 //! 1. pixel position, 2D;
 //! 2. lens position, 2D, only if the camera has a lens;
-//! 3. for each bounce: light choice 1D, point on the light 2D, BSDF lobe 1D, BSDF direction 2D,
+//! 3. time, 1D, only if something moves while the shutter is open (motion blur): the whole
+//!    path sees the scene at that fraction of the shutter interval;
+//! 4. for each bounce: light choice 1D, point on the light 2D, BSDF lobe 1D, BSDF direction 2D,
 //!    Russian roulette 1D.
 //!
 //! Every sampler is a pure function of (seed, samples per pixel, pixel, sample index, dimension): any
