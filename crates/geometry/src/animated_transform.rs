@@ -133,6 +133,11 @@ impl AnimatedTransform {
         moved
     }
 
+    /// The keyframes' times and matrices (as decomposed and recomposed).
+    pub fn keyframes(&self) -> impl Iterator<Item = (f64, DMat4)> + '_ {
+        self.keyframes.iter().map(|k| (k.time, k.matrix()))
+    }
+
     /// Whether some keyframe mirrors space (a negative determinant).
     pub fn mirrors(&self) -> bool {
         self.keyframes

@@ -88,6 +88,12 @@ impl Placement {
         }
     }
 
+    /// The object-to-world matrix.
+    #[inline]
+    pub fn to_world(&self) -> DMat4 {
+        self.to_world
+    }
+
     /// The object-space point `p` in world space.
     #[inline]
     pub fn point_to_world(&self, p: Vec3) -> Vec3 {

@@ -31,7 +31,7 @@ use glam::{Vec2, Vec3};
 use lights::Light;
 use sampling::Sampler;
 use sampling::distribution::CdfTable;
-use world::{BsdfSlot, CameraConnection, RayTally, SurfaceHit, World};
+use world::{BsdfSlot, CameraConnection, CameraTraits, RayTally, SurfaceHit, World};
 
 /// Traces light paths for caustics (see the module documentation).
 #[derive(Clone, Debug)]
@@ -54,12 +54,12 @@ pub struct LightTracer {
 
 impl LightTracer {
     /// The tracer for `world` with the path tracer's `settings` (depth and roulette), for a
-    /// camera with an aperture (`camera_has_lens`) or a pinhole; `None` when the world has no
+    /// camera with an aperture or a pinhole, moving or not (`camera`); `None` when the world has no
     /// area light with power, or when `settings` hide emitters: the camera then sees through area
     /// emitters, which its connections from light paths do not (the path tracer keeps those paths).
     /// Also `None` when `settings` skip null vertices in a world with null lobes: the tracer
     /// counts every pass through one as a vertex.
-    pub fn new(world: &World, settings: &PathSettings, camera_has_lens: bool) -> Option<Self> {
+    pub fn new(world: &World, settings: &PathSettings, camera: CameraTraits) -> Option<Self> {
         if settings.hide_emitters || (settings.skip_null_vertices && world.has_null_lobes()) {
             return None;
         }
@@ -85,8 +85,8 @@ impl LightTracer {
                 .unwrap_or(crate::reference::UNBOUNDED_DEPTH_CAP),
             russian_roulette: settings.russian_roulette,
             draws_lobe_choice: world.has_lobe_choice(),
-            draws_lens: camera_has_lens,
-            draws_time: world.has_motion(),
+            draws_lens: camera.has_lens,
+            draws_time: world.has_motion() || camera.moves,
         })
     }
 
@@ -97,7 +97,7 @@ impl LightTracer {
         &self,
         world: &World,
         sampler: &mut impl Sampler,
-        connect: &impl Fn(Vec3, Vec2) -> Option<CameraConnection>,
+        connect: &impl Fn(Vec3, Vec2, f32) -> Option<CameraConnection>,
         tally: &mut impl RayTally,
         splat: &mut impl FnMut(Vec2, Vec3),
     ) {
@@ -135,7 +135,7 @@ impl LightTracer {
             };
             if vertex > 1
                 && !surface.bsdf.flags().is_delta()
-                && let Some(camera) = connect(surface.hit.p, u_lens)
+                && let Some(camera) = connect(surface.hit.p, u_lens, time)
             {
                 let weight = emitted_weight * throughput;
                 connect_to_camera(world, &surface, towards_light, camera, tally, weight, splat);

@@ -368,7 +368,7 @@ fn render_sampled<T: RayTally + Default + Send>(
     let built = Integrators::new(context.scene, context.plan);
     let prefix = built.pattern_dimensions(
         context.view.camera.has_lens(),
-        context.scene.world.has_motion(),
+        context.scene.world.has_motion() || context.view.camera.moves(),
     );
     match context.plan.sampler {
         SamplerKind::Independent => {
@@ -402,7 +402,7 @@ impl Integrators {
             },
             Transport::Path(mut settings) => {
                 let light_tracer = if settings.light_tracing {
-                    LightTracer::new(world, &settings, scene.camera.has_lens())
+                    LightTracer::new(world, &settings, scene.camera.traits())
                 } else {
                     None
                 };
@@ -521,7 +521,13 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         tracer.trace(
             world,
             &mut worker.sampler,
-            &|p, u_lens| camera.connect(p, filter.radius(), u_lens),
+            &|p, u_lens, time| {
+                if camera.moves() {
+                    camera.at_time(time).connect(p, filter.radius(), u_lens)
+                } else {
+                    camera.connect(p, filter.radius(), u_lens)
+                }
+            },
             &mut worker.tally,
             &mut add,
         );
@@ -529,7 +535,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     let light_paths: Option<&LightPaths<'_, Worker<'_, S, T>>> =
         (costs.is_none() && light_tracer.is_some()).then_some(&trace_light_path);
     let has_lens = camera.has_lens();
-    let has_motion = world.has_motion();
+    let has_motion = world.has_motion() || camera.moves();
     // For `RenderPlan::independent_time`: the time from a stream of its own, keyed like the
     // sampler by (pixel, sample index), never from the pattern.
     let time_seed = plan.independent_time.then_some(plan.seed ^ 0x7135_9e37);
@@ -568,7 +574,11 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             (true, None) => sampler.next_1d(),
             (true, Some(seed)) => sampling::Rng::for_sample(pixel, sample_index, seed).next_f32(),
         };
-        let mut camera_ray = camera.generate_ray(film_position, u_lens);
+        let mut camera_ray = if has_motion && camera.moves() {
+            camera.at_time(time).generate_ray(film_position, u_lens)
+        } else {
+            camera.generate_ray(film_position, u_lens)
+        };
         camera_ray.ray.time = time;
         (camera_ray, film_position)
     };

@@ -2,7 +2,8 @@
 //! shutter open, converges to the time average of the plane's exact radiance, for every
 //! configuration of the path integrator, every sampler and the reference integrator; and the
 //! stiff cases (a shutter that opens and closes at once, a full turn within the shutter, a light
-//! moving 10⁴ times its size, a shutter of 10⁻⁹ far from time 0) converge likewise.
+//! moving 10⁴ times its size, a shutter of 10⁻⁹ far from time 0) and a moving camera converge
+//! likewise.
 //!
 //! **Oracle.** No renderer: the plane (reflectance ρ, normal +z) under a one-sided Lambertian
 //! polygon of radiance L has radiance ρ/π · E with E = L/2 · |Σᵢ γᵢ n · (vᵢ × vᵢ₊₁)/|vᵢ × vᵢ₊₁||
@@ -65,6 +66,9 @@ struct Case {
     brightness: f64,
     /// Midpoints of the shutter interval the oracle averages over.
     time_points: u32,
+    /// The camera's x at the shutter fraction `u` ∈ [0, 1] (it looks straight down from
+    /// z = [`CAMERA_Z`], moving only along x), `None` for one fixed at x = 0.
+    camera_x: Option<Box<dyn Fn(f64) -> f64>>,
 }
 
 /// The corners of the rectangle of half-edges `half_x × half_y` centred at `center`, turned by
@@ -110,6 +114,7 @@ fn sliding(name: &'static str, shutter: [f64; 2], times: [f64; 2]) -> Case {
         }),
         brightness: 1.0,
         time_points: 256,
+        camera_x: None,
     }
 }
 
@@ -124,7 +129,7 @@ fn scene_xml(case: &Case) -> String {
         <float name="fov" value="90"/>
         <float name="shutter_open" value="{open}"/>
         <float name="shutter_close" value="{close}"/>
-        <transform name="to_world"><lookat origin="0, 0, {CAMERA_Z}" target="0, 0, 0" up="0, 1, 0"/></transform>
+        {}
         <film type="hdrfilm"><rfilter type="box"/></film>
     </sensor>
     <shape type="rectangle">
@@ -137,8 +142,28 @@ fn scene_xml(case: &Case) -> String {
     </shape>
 </scene>
 "#,
+        camera_to_world(case),
         case.to_world
     )
+}
+
+/// The camera's `to_world`: fixed at x = 0, or sliding from `camera_x(0)` to `camera_x(1)`
+/// over the shutter (two keyframes at its ends).
+fn camera_to_world(case: &Case) -> String {
+    let lookat = |x: f64| {
+        format!(r#"<lookat origin="{x}, 0, {CAMERA_Z}" target="{x}, 0, 0" up="0, 1, 0"/>"#)
+    };
+    match &case.camera_x {
+        None => format!(r#"<transform name="to_world">{}</transform>"#, lookat(0.0)),
+        Some(x) => {
+            let [open, close] = case.shutter;
+            format!(
+                r#"<animation name="to_world"><transform time="{open}">{}</transform><transform time="{close}">{}</transform></animation>"#,
+                lookat(x(0.0)),
+                lookat(x(1.0))
+            )
+        }
+    }
 }
 
 /// Irradiance at `p` (normal +z) from a Lambertian polygon of unit radiance with `corners`.
@@ -159,9 +184,15 @@ fn irradiance(p: DVec3, corners: &[DVec3; 4]) -> f64 {
 /// The exact image of `case` on `scene` (positions relative to the camera, as the scene holds
 /// them): each pixel's radiance averaged over the pixel and the shutter.
 fn exact_image(scene: &RenderScene, case: &Case) -> Vec<DVec3> {
-    let camera = DVec3::new(0.0, 0.0, CAMERA_Z);
-    let corners: Vec<[DVec3; 4]> = (0..case.time_points)
-        .map(|k| (case.corners)((f64::from(k) + 0.5) / f64::from(case.time_points)))
+    // Where the camera is at each time: the scene is placed relative to where it is when the
+    // shutter opens, and a moving camera only slides, so its rays are the opening ones moved.
+    let camera_at =
+        |u: f64| DVec3::new(case.camera_x.as_ref().map_or(0.0, |x| x(u)), 0.0, CAMERA_Z);
+    let times: Vec<([DVec3; 4], DVec3)> = (0..case.time_points)
+        .map(|k| {
+            let u = (f64::from(k) + 0.5) / f64::from(case.time_points);
+            ((case.corners)(u), camera_at(u))
+        })
         .collect();
     let mut image = Vec::new();
     for y in 0..SIZE {
@@ -172,9 +203,12 @@ fn exact_image(scene: &RenderScene, case: &Case) -> Vec<DVec3> {
                     let offset = (Vec2::new(i as f32, j as f32) + 0.5) / PIXEL_POINTS as f32;
                     let film = Vec2::new(x as f32, y as f32) + offset;
                     let ray = scene.camera.generate_ray(film, Vec2::ZERO).ray;
-                    let (o, d) = (ray.origin.as_dvec3() + camera, ray.dir.as_dvec3());
-                    let p = o + d * (-o.z / d.z);
-                    sum += corners.iter().map(|c| irradiance(p, c)).sum::<f64>();
+                    let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
+                    for (corners, camera) in &times {
+                        let o = o + *camera;
+                        let p = o + d * (-o.z / d.z);
+                        sum += irradiance(p, corners);
+                    }
                 }
             }
             let mean = sum / f64::from(PIXEL_POINTS * PIXEL_POINTS * case.time_points);
@@ -302,6 +336,7 @@ fn a_full_turn_and_a_long_flight() {
         }),
         brightness: 1.0,
         time_points: 256,
+        camera_x: None,
     };
     check_case(&turn, &mis_configurations(64), POWER);
     let half = 0.01;
@@ -318,6 +353,7 @@ fn a_full_turn_and_a_long_flight() {
         }),
         brightness: 1e4,
         time_points: 8192,
+        camera_x: None,
     };
     // Most times see the light far away: Sobol's stratified time finds the near passes evenly,
     // independent times far less so, which then sees 5% of the image and 20% of a block.
@@ -331,5 +367,25 @@ fn a_full_turn_and_a_long_flight() {
         &flight,
         &[(independent.0, independent.1, independent.2, 1024)],
         reduced,
+    );
+}
+
+/// A camera sliding 0.6 along x under a fixed light: the plane's lit spot smears across the
+/// image.
+#[test]
+fn a_moving_camera_blurs_what_it_sees() {
+    let fixed = |name, shutter| Case {
+        camera_x: Some(Box::new(|u: f64| -0.3 + 0.6 * u)),
+        corners: Box::new(|_| rectangle(DVec3::new(0.0, 0.0, 1.0), 0.25, 0.25, 0.0)),
+        to_world: format!(
+            r#"<transform name="to_world">{}</transform>"#,
+            keyframe_ops(0.25, 0.25, 0.0, 0.0)
+        ),
+        ..sliding(name, shutter, [0.0, 1.0])
+    };
+    check_case(
+        &fixed("moving-camera", [0.0, 1.0]),
+        &mis_configurations(64),
+        POWER,
     );
 }

@@ -193,7 +193,7 @@ fn changes_nothing(scene: &RenderScene, configuration: &Configuration) -> bool {
     let settings = &configuration.settings;
     match configuration.label {
         "light tracing" => {
-            LightTracer::new(&scene.world, settings, scene.camera.has_lens()).is_none()
+            LightTracer::new(&scene.world, settings, scene.camera.traits()).is_none()
         }
         "mis power uniform selection" => scene.features.light_count <= 1,
         _ => false,

@@ -175,7 +175,8 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
         });
         light_weights.push(emitter.sampling_weight());
     }
-    let features = SceneFeatures::of(&materials, &lights, accel_has_motion);
+    let camera = camera(&desc);
+    let features = SceneFeatures::of(&materials, &lights, accel_has_motion || camera.moves());
     let mut world = World::new(
         accel,
         materials,
@@ -188,7 +189,6 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
     world
         .set_textures(textures)
         .map_err(|m| error("scene".to_string(), m))?;
-    let camera = camera(&desc);
     Ok(RenderScene {
         world,
         camera,

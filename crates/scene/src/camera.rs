@@ -1,8 +1,9 @@
 //! Mitsuba's `perspective`, `thinlens` and `orthographic` sensors: rays from film positions.
 
-use geometry::Ray;
+use geometry::{Motion, Ray};
 use glam::{Mat4, UVec2, Vec2, Vec3};
-use world::{CameraConnection, CameraRay};
+use std::sync::Arc;
+use world::{CameraConnection, CameraRay, CameraTraits};
 
 use crate::desc::SensorDesc;
 use sampling::warp::sample_concentric_disk;
@@ -20,7 +21,7 @@ pub struct ThinLens {
 /// A pinhole or thin-lens perspective camera, or an orthographic one, with Mitsuba's
 /// conventions: it looks down its local +z, local +y is up, local +x is image-left, and image
 /// rows run top to bottom.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
     to_world: Mat4,
     to_camera: Mat4,
@@ -38,6 +39,8 @@ pub struct Camera {
     crop_offset: Vec2,
     /// The rendered image's size, pixels (the whole film's without a crop window).
     crop_size: Vec2,
+    /// How the camera moves while the shutter is open, if it does.
+    motion: Option<Arc<Motion>>,
 }
 
 impl Camera {
@@ -60,6 +63,40 @@ impl Camera {
             orthographic: sensor.orthographic,
             crop_offset: Vec2::ZERO,
             crop_size: Vec2::new(width as f32, height as f32),
+            motion: sensor
+                .motion
+                .as_ref()
+                .map(|m| Arc::new(Motion::new(m.clone(), sensor.shutter))),
+        }
+    }
+
+    /// What light paths need to know of it: its lens, its motion.
+    pub fn traits(&self) -> CameraTraits {
+        CameraTraits {
+            has_lens: self.has_lens(),
+            moves: self.moves(),
+        }
+    }
+
+    /// Whether the camera moves while the shutter is open.
+    #[inline]
+    pub fn moves(&self) -> bool {
+        self.motion.as_ref().is_some_and(|m| m.moves())
+    }
+
+    /// The camera where it is at `time` (a fraction of the shutter interval, see
+    /// [`geometry::Ray::time`]): itself if it does not move.
+    pub fn at_time(&self, time: f32) -> Camera {
+        match &self.motion {
+            Some(motion) => {
+                let to_world = motion.at(time).to_world().as_mat4();
+                Camera {
+                    to_world,
+                    to_camera: to_world.inverse(),
+                    ..self.clone()
+                }
+            }
+            None => self.clone(),
         }
     }
 
@@ -233,6 +270,7 @@ mod tests {
             principal_point_offset: offset,
             orthographic: false,
             shutter: [0.0, 0.0],
+            motion: None,
         };
         Camera::new(&sensor, 64, 48)
     }
@@ -240,7 +278,7 @@ mod tests {
     #[test]
     fn a_crop_window_renders_its_part_of_the_film() {
         let full = camera([0.0, 0.0]);
-        let cropped = full.cropped(UVec2::new(20, 10), UVec2::new(16, 12));
+        let cropped = full.clone().cropped(UVec2::new(20, 10), UVec2::new(16, 12));
         let at = Vec2::new(3.25, 7.5);
         let whole = full.generate_ray(at + Vec2::new(20.0, 10.0), Vec2::ZERO);
         let window = cropped.generate_ray(at, Vec2::ZERO);
@@ -349,6 +387,7 @@ mod tests {
             principal_point_offset: [0.0, 0.0],
             orthographic: true,
             shutter: [0.0, 0.0],
+            motion: None,
         };
         let camera = Camera::new(&sensor, 64, 32);
         assert!(!camera.connects() && !camera.has_lens());

@@ -24,6 +24,9 @@ pub(crate) fn camera_relative(desc: &mut SceneDesc) {
     desc.sensor.position += offset.as_dvec3();
     desc.sensor.to_world = Mat4::from_translation(-offset) * desc.sensor.to_world;
     desc.sensor.to_world.w_axis = glam::Vec4::W;
+    if let Some(motion) = &mut desc.sensor.motion {
+        *motion = motion.translated(-offset.as_dvec3());
+    }
     for shape in &mut desc.shapes {
         if let Some(motion) = &mut shape.motion {
             // Its geometry is in object space: the motion moves instead.

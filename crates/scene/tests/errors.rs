@@ -561,6 +561,17 @@ fn animations() {
         "<shape type=\"cube\">",
         "cannot move",
     );
+    expect(
+        "scaling_camera.xml",
+        &format!(
+            "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n<animation name=\"to_world\">\n{}\n{}\n</animation>\n</sensor>\n</scene>",
+            key("0", ""),
+            key("1", "<scale value=\"2\"/>")
+        ),
+        4,
+        "<animation name=\"to_world\">",
+        "must not scale",
+    );
     let moving = wrap(&format!(
         "<shape type=\"cube\">\n<animation name=\"to_world\">\n{}\n{}\n</animation>\n</shape>",
         key("0", ""),

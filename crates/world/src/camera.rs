@@ -41,3 +41,13 @@ pub struct CameraConnection {
     /// distance to the aperture point and θ the angle off the view axis there.
     pub importance: f32,
 }
+
+/// What light paths need to know of the camera they connect to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CameraTraits {
+    /// Whether each connection goes through a point of an aperture (a thin lens), which a light
+    /// path then draws.
+    pub has_lens: bool,
+    /// Whether the camera moves while the shutter is open, so that light paths draw a time.
+    pub moves: bool,
+}

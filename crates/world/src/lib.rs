@@ -15,7 +15,7 @@ mod counters;
 mod ray_log;
 mod world;
 
-pub use camera::{CameraConnection, CameraRay};
+pub use camera::{CameraConnection, CameraRay, CameraTraits};
 pub use counters::{RayCounters, RayTally};
 pub use ray_log::{RayLog, ShadowRay};
 pub use world::{

@@ -198,8 +198,12 @@ pub struct SensorDesc {
     pub orthographic: bool,
     /// The shutter's opening and closing times, `shutter_open` ≤ `shutter_close` (scene time
     /// units, both 0 by default as in Mitsuba 3): the interval a camera sample's time is drawn
-    /// from once something in the scene moves. Nothing moves yet, so no render draws a time.
+    /// from once something in the scene moves.
     pub shutter: [f64; 2],
+    /// For a moving camera (an `<animation>` as its `to_world`): its camera-to-scene-frame
+    /// transform over time, translated like `to_world` by `-position` (`to_world` and `position`
+    /// are then where it is when the shutter opens).
+    pub motion: Option<geometry::AnimatedTransform>,
 }
 
 impl SensorDesc {

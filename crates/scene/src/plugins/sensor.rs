@@ -6,7 +6,7 @@ use super::{unexpected_child, unknown_type};
 use crate::desc::{FilmDesc, FilterDesc, FovAxis, SamplerDesc, SensorDesc, ThinLensDesc};
 use crate::error::Result;
 use crate::limits::{MAX_FILM_PIXELS, MAX_LANCZOS_LOBES, MAX_SAMPLE_COUNT};
-use crate::params::Params;
+use crate::params::{Params, Placement};
 use crate::xml::tree::{Child, ObjectNode};
 use sampling::SamplerKind;
 
@@ -54,18 +54,41 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
     }
 
     let mut params = Params::new(node);
-    let to_world = params.transform("to_world")?.unwrap_or(DMat4::IDENTITY);
-    // An orthographic camera's to_world may scale its viewing region, as Mitsuba's may.
-    if orthographic && !(to_world.is_finite() && DMat3::from_mat4(to_world).determinant() != 0.0) {
+    // Times keep double precision: a shutter of 1e-9 may open at any time.
+    let shutter = [
+        finite(&mut params, "shutter_open", 0.0)?,
+        finite(&mut params, "shutter_close", 0.0)?,
+    ];
+    if shutter[0] > shutter[1] {
         return Err(params
-            .loc_of("to_world")
-            .error("the camera's to_world must be finite and invertible"));
+            .loc_of("shutter_close")
+            .error("shutter_close must not come before shutter_open"));
     }
-    if !orthographic && !is_rigid(&to_world) {
-        return Err(params.loc_of("to_world").error(
-            "the camera's to_world must not scale or shear (Mitsuba forbids it); use rotations, translations and lookat",
-        ));
+    // A moving camera is placed where it is when the shutter opens, its motion kept beside.
+    let (to_world, animation) = match params.placement("to_world")? {
+        None => (DMat4::IDENTITY, None),
+        Some(Placement::Fixed(m)) => (m, None),
+        Some(Placement::Animated(a)) => (a.at(shutter[0]), Some(a)),
+    };
+    let keyframes: Vec<DMat4> = match &animation {
+        Some(a) => a.keyframes().map(|(_, m)| m).collect(),
+        None => vec![to_world],
+    };
+    for m in &keyframes {
+        // An orthographic camera's to_world may scale its viewing region, as Mitsuba's may.
+        if orthographic && !(m.is_finite() && DMat3::from_mat4(*m).determinant() != 0.0) {
+            return Err(params
+                .loc_of("to_world")
+                .error("the camera's to_world must be finite and invertible"));
+        }
+        if !orthographic && !is_rigid(m) {
+            return Err(params.loc_of("to_world").error(
+                "the camera's to_world must not scale or shear (Mitsuba forbids it); use rotations, translations and lookat",
+            ));
+        }
     }
+    let position = to_world.w_axis.truncate();
+    let motion = animation.map(|a| a.translated(-position));
     let (fov_deg, fov_axis) = if orthographic {
         (90.0, FovAxis::X)
     } else {
@@ -119,16 +142,6 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
     } else {
         None
     };
-    // Times keep double precision: a shutter of 1e-9 may open at any time.
-    let shutter = [
-        finite(&mut params, "shutter_open", 0.0)?,
-        finite(&mut params, "shutter_close", 0.0)?,
-    ];
-    if shutter[0] > shutter[1] {
-        return Err(params
-            .loc_of("shutter_close")
-            .error("shutter_close must not come before shutter_open"));
-    }
     params.finish()?;
     Ok(Camera {
         sensor: SensorDesc {
@@ -139,7 +152,7 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
                 glam::DVec4::W,
             )
             .as_mat4(),
-            position: to_world.w_axis.truncate(),
+            position,
             fov_deg: fov_deg as f32,
             fov_axis,
             near_clip: near_clip as f32,
@@ -148,6 +161,7 @@ pub(crate) fn sensor(node: &ObjectNode) -> Result<Camera> {
             principal_point_offset,
             orthographic,
             shutter,
+            motion,
         },
         film: match film {
             Some(film) => film,
