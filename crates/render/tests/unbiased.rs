@@ -302,6 +302,44 @@ fn glass_and_mirror_cornell_box() {
     );
 }
 
+/// The glass and mirror Cornell box of [`glass_and_mirror_cornell_box`] with both spheres
+/// moving while the shutter is open (motion blur): every configuration sees the scene at each
+/// camera sample's time, light tracing's paths and camera connections at their own.
+#[test]
+fn moving_glass_and_mirror() {
+    check_scene(
+        "cbox-glass-motion",
+        MOVING_GLASS,
+        Budget::full(1024, 96, 2),
+        None,
+    );
+}
+
+/// [`LARGE_LIGHT_GLASS`] with the shutter open from 0 to 1, the glass sphere sliding 0.25 along
+/// x and the mirror sphere rising 0.2.
+const MOVING_GLASS: Version = Version {
+    file: "cbox-glass.xml",
+    replace: &[
+        LARGE_CEILING_LIGHT,
+        (
+            r#"<sensor type="perspective">"#,
+            r#"<sensor type="perspective"><float name="shutter_close" value="1"/>"#,
+        ),
+        (
+            r#"<ref id="glass"/>"#,
+            r#"<ref id="glass"/><animation name="to_world"><transform time="0"/><transform time="1"><translate x="0.25"/></transform></animation>"#,
+        ),
+        (
+            r#"<ref id="mirror"/>
+    </shape>"#,
+            r#"<ref id="mirror"/><animation name="to_world"><transform time="0"/><transform time="1"><translate y="0.2"/></transform></animation>
+    </shape>"#,
+        ),
+    ],
+    overrides: &[],
+    max_depth: Some(6),
+};
+
 /// `cbox-glass.xml` with a large ceiling light.
 const LARGE_LIGHT_GLASS: Version = Version {
     file: "cbox-glass.xml",
