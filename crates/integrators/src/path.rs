@@ -25,7 +25,7 @@ use crate::uniform_direction::{sample_without_importance, uniform_direction_pdf}
 use geometry::{Ray, SpawnPoint};
 use glam::{Vec2, Vec3};
 use lights::{LightSelection, LightSelector};
-use materials::{Bsdf, BsdfFlags};
+use materials::BsdfFlags;
 use sampling::Sampler;
 use sampling::mis::{balance_heuristic, power_heuristic};
 use world::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World, shadow_ray};
@@ -560,12 +560,10 @@ impl PathIntegrator {
         u_dir: Vec2,
     ) -> Option<NextDirection> {
         if self.settings.sample_bsdf {
-            // The common case inlined: a diffuse BSDF's sample is a cosine-weighted direction.
-            let sampled = match surface.bsdf {
-                Bsdf::Diffuse(diffuse) => diffuse.sample(wo, u_dir),
-                bsdf => bsdf.sample(wo, u_lobe, u_dir),
-            };
-            sampled.map(NextDirection::from)
+            surface
+                .bsdf
+                .sample(wo, u_lobe, u_dir)
+                .map(NextDirection::from)
         } else {
             sample_without_importance(surface.bsdf, wo, u_lobe, u_dir)
         }

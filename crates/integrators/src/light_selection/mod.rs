@@ -30,7 +30,6 @@ mod ris;
 use glam::{Vec2, Vec3};
 use lights::LightSelection;
 use lights::{Light, LightSample, LightSelector};
-use materials::Bsdf;
 use world::SurfaceHit;
 
 /// A light sample chosen for a shadow ray, with the BSDF already evaluated towards it.
@@ -76,8 +75,9 @@ pub(crate) fn choose_light(
     }
 }
 
-/// One candidate: the light sample and the BSDF towards it, `None` if it carries nothing.
-/// `weight` is left 0 for the caller, whose choice decides it.
+/// One candidate: a point on `light` by `u_point` and the BSDF of `surface` towards it, seen
+/// from `wo` (local frame); `None` if it carries nothing. `weight` is left 0 for the caller,
+/// whose choice decides it; `pdf_for_mis` is `pmf` times the point's density per steradian.
 #[inline(always)]
 fn evaluate(
     light: &Light,
@@ -86,34 +86,9 @@ fn evaluate(
     wo: Vec3,
     u_point: Vec2,
 ) -> Option<ChosenLight> {
-    // The common cases inlined, as the walk inlines a diffuse BSDF's sampling: an area light on
-    // a mesh, seen from a diffuse surface. Each arm finishes on its own: joined, both would
-    // keep their sample where the out-of-line call stores its one, and the inlined sample,
-    // reloaded from there in pieces that straddle how it was stored, would stall.
-    match light {
-        Light::Mesh(mesh) => with_bsdf(mesh.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
-        light => with_bsdf(
-            light.sample_li(surface.hit.p, u_point, surface.hit.time)?,
-            pmf,
-            surface,
-            wo,
-        ),
-    }
-}
-
-/// [`evaluate`] once the light has given its `sample`.
-#[inline(always)]
-fn with_bsdf(
-    sample: LightSample,
-    pmf: f32,
-    surface: &SurfaceHit<'_>,
-    wo: Vec3,
-) -> Option<ChosenLight> {
+    let sample = light.sample_li(surface.hit.p, u_point, surface.hit.time)?;
     let wi = surface.frame.to_local(sample.wi);
-    let (f, pdf_bsdf_solid_angle) = match surface.bsdf {
-        Bsdf::Diffuse(diffuse) => diffuse.eval_with_pdf(wo, wi),
-        bsdf => bsdf.eval_with_pdf(wo, wi),
-    };
+    let (f, pdf_bsdf_solid_angle) = surface.bsdf.eval_with_pdf(wo, wi);
     let f_cos = f * wi.z.abs();
     if f_cos == Vec3::ZERO || sample.radiance == Vec3::ZERO {
         return None;
