@@ -2,7 +2,7 @@
 //! configuration is tested against) and the path tracer with every variance-reduction technique
 //! as a switch.
 
-mod delta_lights;
+mod direct;
 mod light_selection;
 mod light_tracer;
 mod next_direction;

@@ -2,7 +2,7 @@
 //! and connected to the camera (through a point of its aperture, for a thin lens) from every
 //! non-delta surface they reach.
 //!
-//! A path tracer finds light that reaches a diffuse surface through a specular chain (light →
+//! **What it is.** A path tracer finds light that reaches a diffuse surface through a specular chain (light →
 //! glass → floor → camera) only when a BSDF-sampled direction happens to run through the chain
 //! into a light, which for a small light is rare and bright: such caustics, and the light they
 //! throw on to other surfaces, dominate the noise of scenes with glass. Traced from the light,
@@ -13,6 +13,18 @@
 //! camera is non-delta (k ≥ 3 vertices), and this tracer contributes exactly those paths (its
 //! light leaves the light's first hit by a delta lobe and reaches the camera from a non-delta
 //! vertex), so the sum is unbiased.
+//!
+//! **The formula** (the technique goes beyond the lecture). A light path carries
+//! β = Le · |cos θ_light| / (P(light) · p_A · p_ω) · Π f · |cos θ| / pdf over its bounces; a
+//! non-delta vertex x adds, to the pixel its film position falls in,
+//!
+//! ```text
+//! β · f(x → camera) · |cos θ_x| · W_e · |cos θ_camera| / r² · V(x, camera)
+//! ```
+//!
+//! **When `auto` uses it.** In its base wherever it applies (a delta BSDF, an area light,
+//! `max_depth` ≥ 3, a camera that light paths can reach, emitters not hidden); switching it off
+//! is one of `auto`'s trials, kept only when the pilot measures it more efficient.
 //!
 //! Each light path stands for one pixel sample: with `L` paths for an `N`-pixel image, a pixel's
 //! value gains `N / L` times the sum of the paths' contributions to it (see `render::film`).

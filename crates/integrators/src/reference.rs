@@ -1,12 +1,24 @@
 //! The reference path tracer: no tricks, short and obviously right.
 //!
-//! Directions are sampled uniformly over the hemisphere on the side the path arrived from (the
-//! whole sphere for a BSDF that transmits; delta lobes by their delta), emission is counted where a path hits it, and paths end at
-//! `max_depth` vertices. No next event estimation, no MIS, no Russian roulette. Delta lights
-//! (points) cannot be hit by a random ray, so each vertex connects to them explicitly: the only
-//! unbiased way to see them. Every other configuration is tested against this one.
+//! **What it is.** Directions are sampled uniformly over the hemisphere on the side the path
+//! arrived from (the whole sphere for a BSDF that transmits; delta lobes by their delta),
+//! emission is counted where a path hits it, and paths end at `max_depth` vertices. No next
+//! event estimation, no MIS, no Russian roulette. Delta lights (points) cannot be hit by a
+//! random ray, so each vertex connects to them explicitly (`path/nee.rs`'s delta-light
+//! shadow rays): the only unbiased way to see them. Every other configuration is tested against
+//! this one.
+//!
+//! **The lecture's formula.** The plain Monte Carlo estimate of the rendering equation, one
+//! direction per vertex with the uniform density p(ω) = 1/2π (1/4π through the sphere):
+//!
+//! ```text
+//! E += T · Le,     T *= f · cos θ / p(ω)
+//! ```
+//!
+//! **When `auto` uses it.** Never: it is the `reference` preset, the oracle of the checks and
+//! the report.
 
-use crate::delta_lights::delta_lights;
+use crate::path::nee::delta_lights;
 use crate::settings::DirectSamples;
 use crate::uniform_direction::sample_without_importance;
 use geometry::SpawnPoint;

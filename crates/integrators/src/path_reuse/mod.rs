@@ -25,6 +25,10 @@
 //! short connections into corners make no fireflies. The pixels' errors are correlated within a
 //! block (each pixel's own error is what shrinks), which shows as blocky noise at low sample
 //! counts.
+//!
+//! **When `auto` uses it.** 4 × 4 blocks are one of `auto`'s trials wherever a diffuse material
+//! is, kept when the pilot measures them more efficient (the Cornell box); path reuse and light
+//! tracing exclude each other.
 
 use geometry::SpawnPoint;
 use glam::{Vec3, Vec4};
@@ -115,6 +119,68 @@ pub struct ReusablePath {
     pub first: Option<FirstVertex>,
     /// The second vertex, where both it and the first are diffuse.
     pub second: Option<SecondVertex>,
+}
+
+/// What path reuse keeps of one walk of [`crate::PathIntegrator::radiance_reusable`]: the first
+/// vertex where it is diffuse, the second once it is found diffuse, and then the estimate up to
+/// the second vertex, while the walk goes on estimating what the second reflects.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct WalkSplit {
+    /// The first vertex, where it is diffuse.
+    first: Option<FirstVertex>,
+    /// The second vertex, where both it and the first are diffuse.
+    second: Option<SecondVertex>,
+    /// The estimate up to the second vertex (W m⁻² sr⁻¹, RGB), once it is found.
+    own: Vec3,
+}
+
+impl WalkSplit {
+    /// Keeps the walk's vertex number `depth` at `surface` (whose point is `point`, seen from
+    /// `wo`, local frame) where it is one path reuse connects, with the walk's estimate so far,
+    /// `radiance`. True when the vertex is the second: the walk then estimates afresh, from it,
+    /// the radiance it reflects.
+    #[inline(always)]
+    pub(crate) fn keep(
+        &mut self,
+        depth: u32,
+        surface: &SurfaceHit<'_>,
+        point: &SpawnPoint,
+        wo: Vec3,
+        radiance: Vec3,
+    ) -> bool {
+        if depth == 1 {
+            self.first = FirstVertex::at(surface, point, wo);
+        } else if depth == 2
+            && self.first.is_some()
+            && let Some(found) = SecondVertex::at(surface, point)
+        {
+            self.second = Some(found);
+            self.own = radiance;
+            return true;
+        }
+        false
+    }
+
+    /// The path's estimate with the walk's final `radiance` (the whole estimate, or with a
+    /// second vertex what it reflects).
+    #[inline(always)]
+    pub(crate) fn finish(self, radiance: Vec3) -> ReusablePath {
+        match self.second {
+            Some(mut second) => {
+                second.reflected = radiance;
+                ReusablePath {
+                    own: self.own,
+                    first: self.first,
+                    second: Some(second),
+                }
+            }
+            None => ReusablePath {
+                own: radiance,
+                first: self.first,
+                second: None,
+            },
+        }
+    }
 }
 
 /// The estimates of `paths` (one camera sample each, of nearby pixels) with their second
