@@ -377,6 +377,7 @@ pub(crate) fn build_bsdf(desc: &BsdfDesc) -> Result<Bsdf, String> {
         BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::TexturedBlend { base, .. } => {
             build_bsdf(base)?
         }
+        BsdfDesc::Built(bsdf) => bsdf.clone(),
         BsdfDesc::TwoSided { front, back } => Bsdf::TwoSided(
             TwoSided::with_sides(build_bsdf(front)?, build_bsdf(back)?)
                 .map_err(|e| e.to_string())?,

@@ -175,6 +175,10 @@ pub enum BsdfDesc {
         /// The textures of the first and the second BSDF's diffuse albedos, if any.
         reflectances: [Option<Arc<BitmapTexture>>; 2],
     },
+    /// A BSDF that its plugin's reader built at once from the XML parameters (see the plugin list
+    /// in the loader): new plugins need no variant of their own here nor a case in the scene
+    /// builder.
+    Built(materials::Bsdf),
     /// `twosided`: `front` on the front side and `back` on the back side (the back side sees the
     /// BSDF as if the surface were turned around). With one nested BSDF, `back` equals `front`.
     TwoSided {

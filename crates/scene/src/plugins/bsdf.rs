@@ -13,21 +13,34 @@ use crate::ior::{CONDUCTORS, ior_names, lookup_conductor, lookup_ior};
 use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
 
-/// The BSDF plugins this loader understands.
-const SUPPORTED: [&str; 12] = [
-    "diffuse",
-    "conductor",
-    "roughconductor",
-    "dielectric",
-    "roughdielectric",
-    "thindielectric",
-    "plastic",
-    "roughplastic",
-    "twosided",
-    "blendbsdf",
-    "mask",
-    "null",
-];
+/// How one `<bsdf>` plugin's element is read into a description: its parameters, nested
+/// objects and their checks, with errors at the element's line.
+type Reader<'a> = fn(&mut BsdfTable<'a>, &'a ObjectNode) -> Result<BsdfDesc>;
+
+/// The BSDF plugins this loader understands, one line each: Mitsuba's plugin name and the
+/// function that reads its XML parameters. A plugin whose reader builds the runtime BSDF at once
+/// ([`BsdfDesc::Built`]) needs nothing else in the loader.
+fn plugins<'a>() -> [(&'static str, Reader<'a>); 12] {
+    [
+        ("diffuse", BsdfTable::one_sided),
+        ("conductor", BsdfTable::one_sided),
+        ("roughconductor", BsdfTable::one_sided),
+        ("dielectric", BsdfTable::one_sided),
+        ("roughdielectric", BsdfTable::one_sided),
+        ("thindielectric", BsdfTable::one_sided),
+        ("plastic", BsdfTable::one_sided),
+        ("roughplastic", BsdfTable::one_sided),
+        ("twosided", BsdfTable::twosided),
+        ("blendbsdf", BsdfTable::blend),
+        ("mask", BsdfTable::mask),
+        ("null", BsdfTable::one_sided),
+    ]
+}
+
+/// The names of [`plugins`], for error messages.
+fn supported() -> Vec<&'static str> {
+    plugins().iter().map(|(name, _)| *name).collect()
+}
 
 /// The BSDFs of a scene, filled as shapes and references ask for them.
 pub(crate) struct BsdfTable<'a> {
@@ -132,12 +145,10 @@ impl<'a> BsdfTable<'a> {
     /// value it rejects (an index of refraction too large for single precision) is reported
     /// with the element's line.
     fn interpret(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
-        let bsdf = match node.plugin.as_str() {
-            "twosided" => self.twosided(node)?,
-            "blendbsdf" => self.blend(node)?,
-            "mask" => self.mask(node)?,
-            _ => self.one_sided(node)?,
+        let Some((_, read)) = plugins().into_iter().find(|(name, _)| *name == node.plugin) else {
+            return Err(unknown_type(node, &supported()));
         };
+        let bsdf = read(self, node)?;
         crate::build::build_bsdf(&bsdf).map_err(|message| node.loc.error(message))?;
         Ok(bsdf)
     }
@@ -248,7 +259,7 @@ impl<'a> BsdfTable<'a> {
                     }
                 })
             }
-            _ => return Err(unknown_type(node, &SUPPORTED)),
+            _ => return Err(unknown_type(node, &supported())),
         };
         params.finish()?;
         Ok(bsdf)
@@ -503,6 +514,7 @@ fn bsdf_has_transmission(desc: &BsdfDesc) -> bool {
         BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::TexturedBlend { base, .. } => {
             bsdf_has_transmission(base)
         }
+        BsdfDesc::Built(bsdf) => bsdf.flags().contains(materials::BsdfFlags::TRANSMISSION),
         _ => false,
     }
 }
