@@ -114,6 +114,32 @@ impl BitmapTexture {
         }
     }
 
+    /// The gradient (∂/∂u, ∂/∂v) of [`Self::eval_luminance`] at surface coordinates `uv`, per
+    /// unit of u and v: Mitsuba's `eval_1_grad`. With bilinear filtering the derivative of the
+    /// interpolation of the four texels' luminances (the finite differences between neighbouring
+    /// texels) by the texel coordinates, carried back through `to_uv`'s linear part and scaled by
+    /// the resolution after it, in Mitsuba's order; zero with nearest filtering, which is flat
+    /// within a texel.
+    pub fn luminance_gradient(&self, uv: Vec2) -> Vec2 {
+        if self.filter == TextureFilter::Nearest {
+            return Vec2::ZERO;
+        }
+        let size = Vec2::new(self.width as f32, self.height as f32);
+        let p = self.to_uv.transform_point2(uv) * size - 0.5;
+        let corner = p.floor();
+        let w = p - corner;
+        let (x, y) = (corner.x, corner.y);
+        let f00 = luminance(self.texel(x, y));
+        let f10 = luminance(self.texel(x + 1.0, y));
+        let f01 = luminance(self.texel(x, y + 1.0));
+        let f11 = luminance(self.texel(x + 1.0, y + 1.0));
+        let d_texel = Vec2::new(
+            (1.0 - w.y) * (f10 - f00) + w.y * (f11 - f01),
+            (1.0 - w.x) * (f01 - f00) + w.x * (f11 - f10),
+        );
+        size * self.to_uv.matrix2.transpose().mul_vec2(d_texel)
+    }
+
     /// The texel at integer coordinates (x, y), which the wrap mode brings into the image.
     fn texel(&self, x: f32, y: f32) -> Vec3 {
         let x = wrap(x, self.width, self.wrap);

@@ -1,10 +1,13 @@
 //! The closed set of BSDFs as one enum, and what sampling one returns.
 
 use crate::blend::Blend;
+use crate::bump_map::BumpMap;
 use crate::conductor::Conductor;
 use crate::dielectric::Dielectric;
 use crate::diffuse::Diffuse;
 use crate::flags::BsdfFlags;
+use crate::normal_map::NormalMap;
+use crate::perturbed::SurfacePoint;
 use crate::plastic::Plastic;
 use crate::rough_conductor::RoughConductor;
 use crate::rough_dielectric::RoughDielectric;
@@ -78,6 +81,11 @@ pub(crate) trait Model {
 
     /// [`Bsdf::with_diffuse_reflectance`].
     fn with_diffuse_reflectance(&self, _reflectance: Vec3) -> Option<Bsdf> {
+        None
+    }
+
+    /// [`Bsdf::at_surface`].
+    fn at_surface(&self, _point: &SurfacePoint) -> Option<Bsdf> {
         None
     }
 
@@ -179,6 +187,16 @@ macro_rules! bsdf_set {
                 }
             }
 
+            /// The BSDF at the surface point `point`, for a BSDF with [`BsdfFlags::AT_SURFACE`] (a
+            /// [`NormalMap`] or [`BumpMap`] with its frame perturbed there); `None` for a BSDF that
+            /// is the same everywhere, or one made of others (a [`TwoSided`] is resolved to its
+            /// side first, and the loader keeps adapters out of blends).
+            pub fn at_surface(&self, point: &SurfacePoint) -> Option<Self> {
+                match self {
+                    $(Self::$variant(b) => Model::at_surface(b, point),)*
+                }
+            }
+
             /// The kinds of lobes the BSDF has and what its sampling needs ([`BsdfFlags`]).
             #[inline]
             pub fn flags(&self) -> BsdfFlags {
@@ -226,6 +244,10 @@ bsdf_set! {
     TwoSided(TwoSided),
     /// Two BSDFs blended by a constant weight (Mitsuba's `blendbsdf`).
     Blend(Blend),
+    /// A BSDF under a normal map (Mitsuba's `normalmap`).
+    NormalMap(NormalMap),
+    /// A BSDF under a bump map (Mitsuba's `bumpmap`).
+    BumpMap(BumpMap),
 }
 
 impl Bsdf {

@@ -38,6 +38,9 @@ impl BsdfFlags {
     /// the BSDF's help must then reach its delta lobes by [`crate::Bsdf::sample_delta`]. A
     /// twosided with a mirror on one side and a diffuse on the other is not mixed.
     pub const MIXED: Self = Self(1 << 7);
+    /// The BSDF depends on the surface point ([`crate::Bsdf::at_surface`] gives it there: a
+    /// normal or bump map), so the renderer must ask at every hit.
+    pub const AT_SURFACE: Self = Self(1 << 8);
     /// The lobes with a density: [`Self::DIFFUSE`] and [`Self::GLOSSY`].
     pub const SMOOTH: Self = Self(Self::DIFFUSE.0 | Self::GLOSSY.0);
 
@@ -87,7 +90,7 @@ impl BitOrAssign for BsdfFlags {
 
 impl fmt::Debug for BsdfFlags {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        const NAMES: [(BsdfFlags, &str); 8] = [
+        const NAMES: [(BsdfFlags, &str); 9] = [
             (BsdfFlags::DIFFUSE, "DIFFUSE"),
             (BsdfFlags::GLOSSY, "GLOSSY"),
             (BsdfFlags::DELTA, "DELTA"),
@@ -96,6 +99,7 @@ impl fmt::Debug for BsdfFlags {
             (BsdfFlags::ANISOTROPIC, "ANISOTROPIC"),
             (BsdfFlags::LOBE_CHOICE, "LOBE_CHOICE"),
             (BsdfFlags::MIXED, "MIXED"),
+            (BsdfFlags::AT_SURFACE, "AT_SURFACE"),
         ];
         let set: Vec<&str> = NAMES
             .iter()

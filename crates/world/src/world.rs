@@ -5,7 +5,7 @@ use crate::{CameraRay, RayTally};
 use geometry::{Accel, Hit, Ray, SpawnPoint};
 use glam::{Affine2, Vec3, Vec3A};
 use lights::{Light, LightSample};
-use materials::{BitmapTexture, Bsdf, BsdfFlags};
+use materials::{BitmapTexture, Bsdf, BsdfFlags, SurfacePoint};
 use sampling::Frame;
 use std::sync::Arc;
 
@@ -51,6 +51,9 @@ pub enum MaterialTexture {
         /// The bitmaps of the first and the second BSDF's diffuse reflectances.
         reflectances: [Option<Arc<BitmapTexture>>; 2],
     },
+    /// The BSDF depends on the surface point itself ([`BsdfFlags::AT_SURFACE`]: a normal or
+    /// bump map): [`Bsdf::at_surface`] gives the one a hit sees.
+    AtSurface,
 }
 
 /// Room for the BSDF of a textured hit, which exists only for that hit: the integrators keep
@@ -158,9 +161,9 @@ impl World {
         };
         Ok(Self {
             anisotropic,
+            textures: at_surface_textures(&materials, Vec::new()),
             accel,
             materials,
-            textures: Vec::new(),
             shape_material,
             shape_light,
             lights,
@@ -254,9 +257,10 @@ impl World {
                         return Err(format!("material {i}: its texture needs {needed}"));
                     }
                 }
-                None => {}
+                Some(MaterialTexture::AtSurface) | None => {}
             }
         }
+        let textures = at_surface_textures(&self.materials, textures);
         self.textures = if textures.iter().any(Option::is_some) {
             textures
         } else {
@@ -299,6 +303,20 @@ impl World {
                 };
                 self.facing(chosen, frame, dir)
             }
+            Some(MaterialTexture::AtSurface) => {
+                let (side, mirrored) = self.facing(material, frame, dir);
+                let [dp_du, dp_dv] = self.accel.dp_duv(hit);
+                let point = SurfacePoint {
+                    uv: self.accel.uv(hit),
+                    dp_du: frame.to_local(dp_du),
+                    dp_dv: frame.to_local(dp_dv),
+                    ng: frame.to_local(hit.ng),
+                };
+                match side.at_surface(&point) {
+                    Some(at_surface) => (slot.0.insert(at_surface), mirrored),
+                    None => (side, mirrored),
+                }
+            }
             Some(bitmap_texture) => {
                 let (side, mirrored) = self.facing(material, frame, dir);
                 let uv = self.accel.uv(hit);
@@ -315,7 +333,7 @@ impl World {
                             .each_ref()
                             .map(|r| r.as_ref().map(|r| r.eval(uv))),
                     ),
-                    MaterialTexture::Checkerboard(_) => None,
+                    MaterialTexture::Checkerboard(_) | MaterialTexture::AtSurface => None,
                 };
                 match textured {
                     Some(textured) => (slot.0.insert(textured), mirrored),
@@ -526,4 +544,24 @@ pub fn shadow_ray(point: &SpawnPoint, sample: &LightSample) -> (Ray, f32) {
     } else {
         (point.spawn(sample.wi), f32::INFINITY)
     }
+}
+
+/// `textures` (one entry per material, or empty for none) with [`MaterialTexture::AtSurface`] for
+/// each material without a texture of its own that depends on the surface point; empty when no
+/// material has a texture.
+fn at_surface_textures(
+    materials: &[Bsdf],
+    mut textures: Vec<Option<MaterialTexture>>,
+) -> Vec<Option<MaterialTexture>> {
+    let at_surface = |m: &Bsdf| m.flags().contains(BsdfFlags::AT_SURFACE);
+    if !materials.iter().any(at_surface) {
+        return textures;
+    }
+    textures.resize(materials.len(), None);
+    for (texture, material) in textures.iter_mut().zip(materials) {
+        if texture.is_none() && at_surface(material) {
+            *texture = Some(MaterialTexture::AtSurface);
+        }
+    }
+    textures
 }

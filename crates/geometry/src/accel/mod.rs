@@ -260,6 +260,58 @@ impl Accel {
         motion.map_or(local, |m| moving::vector_at(m, hit, local))
     }
 
+    /// ∂p/∂u and ∂p/∂v at `hit` (world units per unit of u and of v, the parameterisation of
+    /// [`Self::uv`]), as Mitsuba's `dp_du` and `dp_dv`, for perturbing shading frames (bump
+    /// maps): for a mesh with texture coordinates the derivatives over the triangle (both zero
+    /// where its coordinates are degenerate), for one without `p1 − p0` and `p2 − p0`; for a
+    /// sphere 2πr times the direction of growing φ and πr times that of growing θ (zero at the
+    /// poles, where they have none); moved with a moving shape to the hit's time. Computed on
+    /// request.
+    pub fn dp_duv(&self, hit: &Hit) -> [Vec3; 2] {
+        let (shape, motion) = self.shape(hit.shape);
+        let local = match shape {
+            Shape::Mesh(mesh) => {
+                let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
+                let p = &mesh.positions;
+                let (dp0, dp1) = (p[i1] - p[i0], p[i2] - p[i0]);
+                match &mesh.uvs {
+                    None => [dp0, dp1],
+                    Some(uv) => {
+                        let (duv0, duv1) = (uv[i1] - uv[i0], uv[i2] - uv[i0]);
+                        let det = duv0.x * duv1.y - duv0.y * duv1.x;
+                        if det == 0.0 {
+                            return [Vec3::ZERO; 2];
+                        }
+                        [
+                            (duv1.y * dp0 - duv0.y * dp1) / det,
+                            (duv0.x * dp1 - duv1.x * dp0) / det,
+                        ]
+                    }
+                }
+            }
+            Shape::Sphere(sphere) => {
+                let ng = motion.map_or(hit.ng, |m| m.at(hit.time).normal_to_object(hit.ng));
+                let outward = if sphere.flip_normals { -ng } else { ng };
+                let local = sphere.to_local * outward;
+                let sin_theta = local.truncate().length();
+                if sin_theta == 0.0 {
+                    return [Vec3::ZERO; 2];
+                }
+                let (cos_phi, sin_phi) = (local.x / sin_theta, local.y / sin_theta);
+                let to_world = sphere.to_local.transpose();
+                let r = sphere.radius;
+                [
+                    to_world * (std::f32::consts::TAU * r * Vec3::new(-local.y, local.x, 0.0)),
+                    to_world
+                        * (std::f32::consts::PI
+                            * r
+                            * Vec3::new(local.z * cos_phi, local.z * sin_phi, -sin_theta)),
+                ]
+            }
+        };
+        local.map(|v| motion.map_or(v, |m| moving::vector_at(m, hit, v)))
+    }
+
     fn surface_hit(&self, origin: Vec3, dir: Vec3, found: Found) -> WideHit {
         match found {
             Found::Triangle { packet, lane, hit } => {

@@ -1,5 +1,5 @@
 //! `<bsdf>`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
-//! plastic, roughplastic, twosided, blendbsdf and null, plus the table of BSDFs
+//! plastic, roughplastic, twosided, blendbsdf, mask, null, normalmap and bumpmap, plus the table of BSDFs
 //! that shapes index and `<ref id>` resolves into.
 
 use std::collections::HashMap;
@@ -12,6 +12,7 @@ use crate::error::Result;
 use crate::ior::{CONDUCTORS, ior_names, lookup_conductor, lookup_ior};
 use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
+use materials::{Bsdf, BsdfFlags, BumpMap, NormalMap};
 
 /// How one `<bsdf>` plugin's element is read into a description: its parameters, nested
 /// objects and their checks, with errors at the element's line.
@@ -20,7 +21,7 @@ type Reader<'a> = fn(&mut BsdfTable<'a>, &'a ObjectNode) -> Result<BsdfDesc>;
 /// The BSDF plugins this loader understands, one line each: Mitsuba's plugin name and the
 /// function that reads its XML parameters. A plugin whose reader builds the runtime BSDF at once
 /// ([`BsdfDesc::Built`]) needs nothing else in the loader.
-fn plugins<'a>() -> [(&'static str, Reader<'a>); 12] {
+fn plugins<'a>() -> [(&'static str, Reader<'a>); 14] {
     [
         ("diffuse", BsdfTable::one_sided),
         ("conductor", BsdfTable::one_sided),
@@ -34,6 +35,8 @@ fn plugins<'a>() -> [(&'static str, Reader<'a>); 12] {
         ("blendbsdf", BsdfTable::blend),
         ("mask", BsdfTable::mask),
         ("null", BsdfTable::one_sided),
+        ("normalmap", BsdfTable::normalmap),
+        ("bumpmap", BsdfTable::bumpmap),
     ]
 }
 
@@ -398,6 +401,89 @@ impl<'a> BsdfTable<'a> {
         blended(node, [null_bsdf(), inner], opacity_texture, opacity)
     }
 
+    /// `normalmap`: one nested BSDF and a `bitmap` texture named `normalmap` whose RGB encodes
+    /// the shading normal ([`NormalMap`]).
+    fn normalmap(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
+        let texture = self.adapter_texture(node, "normalmap")?;
+        Params::new(node).finish()?;
+        let nested = self.adapter_nested(node, "normalmap")?;
+        Ok(BsdfDesc::Built(NormalMap::new(nested, texture).into()))
+    }
+
+    /// `bumpmap`: one nested BSDF, a `bitmap` texture (of any name, as in Mitsuba) whose
+    /// luminance times `scale` (default 1) is the height field ([`BumpMap`]).
+    fn bumpmap(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
+        let name = node
+            .children
+            .iter()
+            .find_map(|child| match child {
+                Child::Object(object) if object.tag == "texture" => object.name.as_deref(),
+                Child::Ref(reference) => reference.name.as_deref(),
+                Child::Object(_) => None,
+            })
+            .unwrap_or("bumpmap");
+        let texture = self.adapter_texture(node, name)?;
+        let mut params = Params::new(node);
+        let scale = params.float_or("scale", 1.0)?;
+        if !scale.is_finite() {
+            return Err(params.loc_of("scale").error("\"scale\" must be finite"));
+        }
+        params.finish()?;
+        let nested = self.adapter_nested(node, name)?;
+        Ok(BsdfDesc::Built(
+            BumpMap::new(nested, texture, scale as f32).into(),
+        ))
+    }
+
+    /// The `bitmap` texture named `name` of a BSDF adapter, or an error at the element.
+    fn adapter_texture(
+        &self,
+        node: &'a ObjectNode,
+        name: &str,
+    ) -> Result<Arc<materials::BitmapTexture>> {
+        match self.texture_param(node, name, &["bsdf"])? {
+            Some(TextureDesc::Bitmap(texture)) => Ok(texture),
+            Some(TextureDesc::Checkerboard { .. }) => Err(node.loc.error(format!(
+                "{}: the texture \"{name}\" must be a bitmap (a checkerboard is not supported)",
+                node.plugin
+            ))),
+            None => Err(node.loc.error(format!(
+                "{} needs a <texture type=\"bitmap\" name=\"{name}\">",
+                node.plugin
+            ))),
+        }
+    }
+
+    /// The one nested BSDF of an adapter whose texture is named `texture_name`, built: an error
+    /// at the element when there is none or more, or when it is textured or an adapter itself.
+    fn adapter_nested(&mut self, node: &'a ObjectNode, texture_name: &str) -> Result<Bsdf> {
+        let mut nested = self.nested(node, Some(texture_name))?.into_iter();
+        let (Some((child, inner)), None) = (nested.next(), nested.next()) else {
+            return Err(node
+                .loc
+                .error(format!("{} needs exactly one nested BSDF", node.plugin)));
+        };
+        if matches!(
+            inner,
+            BsdfDesc::Checkerboard { .. }
+                | BsdfDesc::DiffuseBitmap { .. }
+                | BsdfDesc::TexturedBlend { .. }
+        ) {
+            return Err(child_loc(child).error(format!(
+                "a {} around a textured BSDF is not supported (give its parameters as values)",
+                node.plugin
+            )));
+        }
+        let bsdf = crate::build::build_bsdf(&inner).map_err(|m| child_loc(child).error(m))?;
+        if bsdf.flags().contains(BsdfFlags::AT_SURFACE) {
+            return Err(child_loc(child).error(format!(
+                "a {} around a normalmap or bumpmap is not supported",
+                node.plugin
+            )));
+        }
+        Ok(bsdf)
+    }
+
     /// A blend weight named `name` of `node` (`blendbsdf`'s `weight`, `mask`'s `opacity`): a
     /// texture, or a constant in [0, 1] (`default` when absent, an error when there is none),
     /// and the constant ½ beside a texture; an error when given both ways. Checks the node's
@@ -514,7 +600,7 @@ fn bsdf_has_transmission(desc: &BsdfDesc) -> bool {
         BsdfDesc::DiffuseBitmap { base, .. } | BsdfDesc::TexturedBlend { base, .. } => {
             bsdf_has_transmission(base)
         }
-        BsdfDesc::Built(bsdf) => bsdf.flags().contains(materials::BsdfFlags::TRANSMISSION),
+        BsdfDesc::Built(bsdf) => bsdf.flags().contains(BsdfFlags::TRANSMISSION),
         _ => false,
     }
 }
@@ -565,6 +651,12 @@ fn blended(
         .any(|b| matches!(b, BsdfDesc::TexturedBlend { .. }))
     {
         return refuse("of a blendbsdf or mask with a bitmap");
+    }
+    if parts
+        .iter()
+        .any(|b| matches!(b, BsdfDesc::Built(bsdf) if bsdf.flags().contains(BsdfFlags::AT_SURFACE)))
+    {
+        return refuse("of a normalmap or bumpmap");
     }
     let has_checkerboard = parts
         .iter()

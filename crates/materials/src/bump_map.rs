@@ -1,0 +1,98 @@
+//! Mitsuba's `bumpmap`: a nested BSDF whose shading normal a height field's gradient turns.
+
+use crate::bitmap::BitmapTexture;
+use crate::bsdf::{Bsdf, BsdfSample, Model};
+use crate::flags::BsdfFlags;
+use crate::perturbed::{Perturbed, SurfacePoint};
+use glam::{Vec2, Vec3};
+use std::sync::Arc;
+
+/// A nested BSDF seen through a shading frame turned by a height field h(u, v) = `scale` × the
+/// texture's luminance, as Mitsuba's `bumpmap`: with n the shading normal, the surface's
+/// tangents become ∂p/∂u + (∂h/∂u − n · ∂p/∂u) n and ∂p/∂v + (∂h/∂v − n · ∂p/∂v) n (the
+/// texture-space change of n itself neglected), their cross product is the new normal, turned
+/// to the geometric normal's side, and ∂p/∂u made perpendicular to it the first tangent. Only
+/// variations of the height matter, not its level; a texture read with `nearest` filtering has no
+/// gradient (Mitsuba's) and perturbs nothing. How directions pass through the perturbed frame:
+/// see `Perturbed`.
+///
+/// The BSDF as built has no perturbation; [`Bsdf::at_surface`] gives the one for a hit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BumpMap {
+    perturbed: Perturbed,
+    texture: Arc<BitmapTexture>,
+    scale: f32,
+}
+
+impl BumpMap {
+    /// `nested` under the height field `scale` × luminance of `texture` (Mitsuba's `scale`,
+    /// default 1; a world-space height per unit of luminance).
+    pub fn new(nested: Bsdf, texture: Arc<BitmapTexture>, scale: f32) -> Self {
+        Self {
+            perturbed: Perturbed::new(nested),
+            texture,
+            scale,
+        }
+    }
+
+    /// The BSDF under the bumps.
+    pub fn nested(&self) -> &Bsdf {
+        &self.perturbed.nested
+    }
+
+    /// The perturbed shading normal at `point`, in the local shading frame: unit length, or the
+    /// unperturbed +z where the surface has no parameterisation (∂p/∂u or ∂p/∂v zero).
+    pub fn normal(&self, point: &SurfacePoint) -> Vec3 {
+        let gradient = self.scale * self.texture.luminance_gradient(point.uv);
+        // In the shading frame n = +z, so replacing a tangent's normal part is setting its z.
+        let dp_du = point.dp_du.truncate().extend(gradient.x);
+        let dp_dv = point.dp_dv.truncate().extend(gradient.y);
+        let Some(n) = dp_du.cross(dp_dv).try_normalize() else {
+            return Vec3::Z;
+        };
+        if n.dot(point.ng) < 0.0 { -n } else { n }
+    }
+}
+
+impl Model for BumpMap {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        self.perturbed.flags() | BsdfFlags::AT_SURFACE
+    }
+
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.perturbed.eval(wo, wi)
+    }
+
+    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.perturbed.pdf_solid_angle(wo, wi)
+    }
+
+    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        self.perturbed.eval_with_pdf(wo, wi)
+    }
+
+    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
+        self.perturbed.lobe_weight(wo, wi)
+    }
+
+    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
+        self.perturbed.sample(wo, u_lobe, u_dir)
+    }
+
+    fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        self.perturbed.sample_delta(wo, u_lobe)
+    }
+
+    fn at_surface(&self, point: &SurfacePoint) -> Option<Bsdf> {
+        Some(Bsdf::BumpMap(Self {
+            perturbed: self.perturbed.with_normal(self.normal(point), point.dp_du),
+            texture: Arc::clone(&self.texture),
+            scale: self.scale,
+        }))
+    }
+
+    fn albedo_hint(&self) -> Vec3 {
+        self.perturbed.nested.albedo_hint()
+    }
+}
