@@ -3,7 +3,7 @@
 use crate::bitmap::BitmapTexture;
 use crate::bsdf::{Bsdf, BsdfSample, Model};
 use crate::flags::BsdfFlags;
-use crate::perturbed::{Perturbed, SurfacePoint};
+use crate::perturbed::{AdapterOptions, Perturbed, SurfacePoint};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
@@ -13,8 +13,9 @@ use std::sync::Arc;
 /// texture-space change of n itself neglected), their cross product is the new normal, turned
 /// to the geometric normal's side, and ∂p/∂u made perpendicular to it the first tangent. Only
 /// variations of the height matter, not its level; a texture read with `nearest` filtering has no
-/// gradient (Mitsuba's) and perturbs nothing. How directions pass through the perturbed frame:
-/// see `Perturbed`.
+/// gradient (Mitsuba's) and perturbs nothing. How directions pass through the perturbed frame
+/// (the flip, the side test, the cosine and the shadowing term, switched by
+/// [`AdapterOptions`]): see `Perturbed`.
 ///
 /// The BSDF as built has no perturbation; [`Bsdf::at_surface`] gives the one for a hit.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,13 +27,23 @@ pub struct BumpMap {
 
 impl BumpMap {
     /// `nested` under the height field `scale` × luminance of `texture` (Mitsuba's `scale`,
-    /// default 1; a world-space height per unit of luminance).
-    pub fn new(nested: Bsdf, texture: Arc<BitmapTexture>, scale: f32) -> Self {
+    /// default 1; a world-space height per unit of luminance), with Mitsuba's `options`.
+    pub fn new(
+        nested: Bsdf,
+        texture: Arc<BitmapTexture>,
+        scale: f32,
+        options: AdapterOptions,
+    ) -> Self {
         Self {
-            perturbed: Perturbed::new(nested),
+            perturbed: Perturbed::new(nested, options),
             texture,
             scale,
         }
+    }
+
+    /// Mitsuba's switches: the flip of normals facing away from `wo` and the shadowing term.
+    pub fn options(&self) -> AdapterOptions {
+        self.perturbed.options()
     }
 
     /// The BSDF under the bumps.

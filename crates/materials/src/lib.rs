@@ -61,7 +61,7 @@ pub use flags::BsdfFlags;
 pub use fresnel::ComplexIor;
 pub use microfacet::{Microfacet, MicrofacetKind};
 pub use normal_map::NormalMap;
-pub use perturbed::SurfacePoint;
+pub use perturbed::{AdapterOptions, SurfacePoint};
 pub use plastic::Plastic;
 pub use rough_conductor::{LOBE_WEIGHT_FLOOR, RoughConductor};
 pub use rough_dielectric::RoughDielectric;

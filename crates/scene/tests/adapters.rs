@@ -4,7 +4,7 @@
 mod common;
 
 use common::{load, wrap, write_scene};
-use materials::Bsdf;
+use materials::{AdapterOptions, Bsdf};
 use scene::BsdfDesc;
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -71,6 +71,56 @@ fn normalmap_and_bumpmap_load_with_their_nested_bsdf() {
         ),
     );
     assert!(matches!(two_sided, Bsdf::NormalMap(_)), "{two_sided:?}");
+}
+
+/// Mitsuba 3.9's `flip_invalid_normals` and `use_shadowing_function`: true unless given, read
+/// by both adapters.
+#[test]
+fn adapter_options_default_to_mitsubas_and_are_read() {
+    let Bsdf::NormalMap(map) = built(
+        "normalmap_defaults.xml",
+        &format!(
+            "<bsdf type=\"normalmap\">\n{}\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+            raw_bitmap("normalmap")
+        ),
+    ) else {
+        panic!("not a normal map")
+    };
+    assert_eq!(map.options(), AdapterOptions::default());
+    assert!(map.options().flip_invalid_normals && map.options().shadowing_function);
+
+    let Bsdf::NormalMap(map) = built(
+        "normalmap_options.xml",
+        &format!(
+            "<bsdf type=\"normalmap\">\n{}\n<boolean name=\"flip_invalid_normals\" value=\"false\"/>\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+            raw_bitmap("normalmap")
+        ),
+    ) else {
+        panic!("not a normal map")
+    };
+    assert!(!map.options().flip_invalid_normals && map.options().shadowing_function);
+
+    let Bsdf::BumpMap(bumps) = built(
+        "bumpmap_options.xml",
+        &format!(
+            "<bsdf type=\"bumpmap\">\n{}\n<boolean name=\"use_shadowing_function\" value=\"false\"/>\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+            raw_bitmap("height")
+        ),
+    ) else {
+        panic!("not a bump map")
+    };
+    assert!(bumps.options().flip_invalid_normals && !bumps.options().shadowing_function);
+
+    expect(
+        "bumpmap_bad_option.xml",
+        &format!(
+            "<bsdf type=\"bumpmap\">\n{}\n<float name=\"use_shadowing_function\" value=\"1\"/>\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+            raw_bitmap("height")
+        ),
+        9,
+        "use_shadowing_function",
+        "must be given as <boolean>",
+    );
 }
 
 /// Checks the file, line, element and message of the error `body` (starting on line 4) gives.

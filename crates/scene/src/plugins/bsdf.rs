@@ -12,7 +12,7 @@ use crate::error::Result;
 use crate::ior::{CONDUCTORS, ior_names, lookup_conductor, lookup_ior};
 use crate::params::{ColorKind, Params};
 use crate::xml::tree::{Child, ObjectNode, RefNode};
-use materials::{Bsdf, BsdfFlags, BumpMap, NormalMap};
+use materials::{AdapterOptions, Bsdf, BsdfFlags, BumpMap, NormalMap};
 
 /// How one `<bsdf>` plugin's element is read into a description: its parameters, nested
 /// objects and their checks, with errors at the element's line.
@@ -38,6 +38,18 @@ fn plugins<'a>() -> [(&'static str, Reader<'a>); 14] {
         ("normalmap", BsdfTable::normalmap),
         ("bumpmap", BsdfTable::bumpmap),
     ]
+}
+
+/// The booleans both adapters, `normalmap` and `bumpmap`, take: Mitsuba 3.9's
+/// `flip_invalid_normals` and `use_shadowing_function`, each true by default.
+fn adapter_options(params: &mut Params) -> Result<AdapterOptions> {
+    let defaults = AdapterOptions::default();
+    Ok(AdapterOptions {
+        flip_invalid_normals: params
+            .boolean_or("flip_invalid_normals", defaults.flip_invalid_normals)?,
+        shadowing_function: params
+            .boolean_or("use_shadowing_function", defaults.shadowing_function)?,
+    })
 }
 
 /// The names of [`plugins`], for error messages.
@@ -401,17 +413,22 @@ impl<'a> BsdfTable<'a> {
         blended(node, [null_bsdf(), inner], opacity_texture, opacity)
     }
 
-    /// `normalmap`: one nested BSDF and a `bitmap` texture named `normalmap` whose RGB encodes
-    /// the shading normal ([`NormalMap`]).
+    /// `normalmap`: one nested BSDF, a `bitmap` texture named `normalmap` whose RGB encodes
+    /// the shading normal, and the booleans of [`adapter_options`] ([`NormalMap`]).
     fn normalmap(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
         let texture = self.adapter_texture(node, "normalmap")?;
-        Params::new(node).finish()?;
+        let mut params = Params::new(node);
+        let options = adapter_options(&mut params)?;
+        params.finish()?;
         let nested = self.adapter_nested(node, "normalmap")?;
-        Ok(BsdfDesc::Built(NormalMap::new(nested, texture).into()))
+        Ok(BsdfDesc::Built(
+            NormalMap::new(nested, texture, options).into(),
+        ))
     }
 
     /// `bumpmap`: one nested BSDF, a `bitmap` texture (of any name, as in Mitsuba) whose
-    /// luminance times `scale` (default 1) is the height field ([`BumpMap`]).
+    /// luminance times `scale` (default 1) is the height field, and the booleans of
+    /// [`adapter_options`] ([`BumpMap`]).
     fn bumpmap(&mut self, node: &'a ObjectNode) -> Result<BsdfDesc> {
         let name = node
             .children
@@ -428,10 +445,11 @@ impl<'a> BsdfTable<'a> {
         if !scale.is_finite() {
             return Err(params.loc_of("scale").error("\"scale\" must be finite"));
         }
+        let options = adapter_options(&mut params)?;
         params.finish()?;
         let nested = self.adapter_nested(node, name)?;
         Ok(BsdfDesc::Built(
-            BumpMap::new(nested, texture, scale as f32).into(),
+            BumpMap::new(nested, texture, scale as f32, options).into(),
         ))
     }
 
