@@ -15,7 +15,7 @@ use render::session::{film_filter, render_scene};
 use render::shard;
 use render::stats::RenderStats;
 use render::stop::StopSignal;
-use render::technique::plan_from_flags;
+use render::plan::plan_from_flags;
 use scene::{LoadError, RenderScene};
 
 use crate::errors::{file_error, os_error, scene_error, value_error};

@@ -16,8 +16,8 @@ use std::time::Duration;
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use geometry::Accel;
 use render::driver::RenderOptions;
+use render::plan::plan_from_flags;
 use render::session::{film_filter, render_scene, render_scene_recording};
-use render::technique::plan_from_flags;
 use scene::RenderScene;
 
 /// Image size of the Cornell box for the samples-per-second group (pixels per side).

@@ -16,6 +16,11 @@
 //! counts are then independent of the samples the image is made of, so each pixel's mean stays an
 //! unbiased estimate. (Reusing the pilot samples would bias it: a pilot sample that happened to be
 //! large raises the pixel's variance estimate, which buys more samples, which dilutes it.)
+//!
+//! **When `auto` uses it.** With no `--adaptive` flag, `auto` samples adaptively wherever the
+//! pilot costs at most a sixteenth of the budget ([`crate::plan::AUTO_ADAPTIVE_MIN_SPP`] samples
+//! per pixel or more, or a time budget), except in a saved, resumed or partial render; the other
+//! presets only when asked.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 

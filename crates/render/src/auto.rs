@@ -3,7 +3,7 @@
 //!
 //! `auto` starts from the MIS preset minus what the scene cannot use (no light sampling without
 //! lights or without a non-delta BSDF, no MIS where no light can be hit, uniform light choice for
-//! one light: [`crate::technique::auto_settings`]). Each technique whose payoff depends on the
+//! one light: [`crate::plan::auto_settings`]). Each technique whose payoff depends on the
 //! scene is then a *trial* ([`Trials`]): RIS light selection and uniform light selection against
 //! power-proportional selection (several lights), Russian roulette off against on (paths bounded beyond the
 //! roulette's start), path reuse (diffuse materials), and light tracing off against on.

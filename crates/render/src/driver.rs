@@ -24,9 +24,9 @@ use crate::budget::MAX_PASS_SECONDS;
 pub use crate::budget::{BudgetError, RenderBudget};
 use crate::film::{Film, FilteredSum, PixelSum};
 use crate::filter::Splatter;
+use crate::plan::{RenderPlan, Transport};
 use crate::progress::Progress;
 pub use crate::stop::StopSignal;
-use crate::technique::{RenderPlan, Transport};
 use crate::tiles::{Tile, tile_size_for, tiles};
 
 /// How to drive a render, apart from its budget.

@@ -56,7 +56,7 @@ use exr::prelude::{
 use crate::atomic_write::write_atomically;
 use crate::film::{ExactSum, Film, FilteredSum, PixelSum, Splats};
 use crate::image::SPP_ATTRIBUTE;
-use crate::technique::RenderPlan;
+use crate::plan::RenderPlan;
 use sampling::sampler::SamplerKind;
 use scene::SceneDesc;
 

@@ -10,13 +10,13 @@ use crate::commands::CommandError;
 use crate::driver::{RenderOptions, RenderOutput, ResumePoint};
 use crate::film_exr::write_film_exr;
 use crate::fingerprint::scene_fingerprint;
+use crate::plan::{self, RenderPlan, plan};
 use crate::session::{film_filter, render_scene};
 use crate::shard;
 use crate::state::{FORMAT, RenderState, StateHeader, VERSION};
 use crate::stats::RenderStats;
 use crate::stop::StopSignal;
 use crate::summary::summary_line;
-use crate::technique::{self, RenderPlan, plan};
 use scene::SceneDesc;
 use scene::limits::MAX_FILM_PIXELS;
 
@@ -118,7 +118,7 @@ pub fn run(args: &RenderArgs, stop: &StopSignal) -> Result<(), CommandError> {
     if !args.quiet {
         eprintln!(
             "{}",
-            summary_line(&out, &stats, technique::preset(args, &scene.desc))
+            summary_line(&out, &stats, plan::preset(args, &scene.desc))
         );
     }
     Ok(())

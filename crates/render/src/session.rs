@@ -9,7 +9,7 @@ use crate::driver::{
 };
 use crate::filter::{Filter, FilterError, Splatter};
 use crate::image::Image;
-use crate::technique::{RenderPlan, Transport};
+use crate::plan::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
 use integrators::path_reuse::{self, ReusablePath};
 use integrators::{LightTracer, PathIntegrator, reference};

@@ -15,7 +15,7 @@ use crate::commands::CommandError;
 use crate::driver::{NonFiniteCounts, RenderBudget, RenderOutput, ResumePoint};
 use crate::film::Film;
 use crate::film_exr::{RenderRecord, SampleRanges, render_settings};
-use crate::technique::RenderPlan;
+use crate::plan::RenderPlan;
 use scene::SceneDesc;
 use scene::limits::MAX_SAMPLE_COUNT;
 

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::atomic_write::{WriteError, write_bytes_atomically};
 use crate::driver::RenderOutput;
-use crate::technique::RenderPlan;
+use crate::plan::RenderPlan;
 use world::RayCounters;
 
 /// What a render did and what it cost. Field names are part of the command-line contract.

@@ -23,7 +23,7 @@ use common::compare::{POWER, Replicates, check_unbiased};
 use common::{load_file, load_version, mis_power, render_plan, scenes_dir};
 use render::adaptive::{MAX_SHARE, MIN_PILOT_SPP, MIN_SHARE, split_budget};
 use render::driver::{RenderBudget, RenderOutput};
-use render::technique::{RenderPlan, Transport};
+use render::plan::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use scene::RenderScene;
 

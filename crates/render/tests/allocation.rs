@@ -16,8 +16,8 @@ mod common;
 
 use common::{load_file, suite_scenes};
 use render::driver::RenderOptions;
+use render::plan::plan_from_flags;
 use render::session::{film_filter, render_scene};
-use render::technique::plan_from_flags;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 

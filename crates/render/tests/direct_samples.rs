@@ -14,7 +14,7 @@ use common::{Target, film_mean, load_xml, mis_power, render, render_plan, z_test
 use integrators::reference::ReferenceSettings;
 use integrators::{DirectSamples, Mis, PathSettings};
 use render::film::Film;
-use render::technique::{Transport, plan_from_flags};
+use render::plan::{Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
 use scene::RenderScene;
 

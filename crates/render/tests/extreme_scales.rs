@@ -39,7 +39,7 @@ use std::path::Path;
 use common::{mis_power, render, scenes_dir, suite_scenes};
 use glam::{DVec3, UVec2};
 use integrators::{PathReuse, PathSettings};
-use render::technique::Transport;
+use render::plan::Transport;
 use roxmltree::Node;
 use sampling::sampler::SamplerKind;
 use sampling::ztest::{sidak_alpha, student_t_two_sided_p_value};

@@ -15,7 +15,7 @@ use common::{NEAR_CLIP, Target, load_xml, mis_power, render, scene_xml, z_test};
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
 use render::film::Film;
-use render::technique::Transport;
+use render::plan::Transport;
 use sampling::sampler::SamplerKind;
 use scene::RenderScene;
 

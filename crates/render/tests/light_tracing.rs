@@ -16,7 +16,7 @@ mod common;
 use common::{Target, film_mean, load_xml, mis_power, render, z_test};
 use glam::UVec2;
 use integrators::PathSettings;
-use render::technique::{Transport, plan_from_flags};
+use render::plan::{Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
 use sampling::ztest::{sidak_alpha, two_sided_threshold};
 

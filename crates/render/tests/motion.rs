@@ -27,7 +27,7 @@ mod common;
 use common::compare::{POWER, Power, Replicates, check_unbiased};
 use common::{configurations_with, load_xml, mis_power};
 use glam::{DVec3, Vec2};
-use render::technique::{RenderPlan, Transport};
+use render::plan::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use scene::RenderScene;
 

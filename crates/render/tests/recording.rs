@@ -2,8 +2,8 @@
 //! per counted ray.
 
 use render::driver::RenderOptions;
+use render::plan::plan_from_flags;
 use render::session::{film_filter, render_scene, render_scene_recording};
-use render::technique::plan_from_flags;
 use std::path::Path;
 
 #[test]

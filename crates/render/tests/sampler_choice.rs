@@ -2,7 +2,7 @@
 //! unless `--sampler` overrides it; `auto` takes Sobol where the file asks for `independent`,
 //! Mitsuba's default, which carries no intent.
 
-use render::technique::plan_from_flags;
+use render::plan::plan_from_flags;
 use sampling::sampler::SamplerKind;
 use std::path::Path;
 

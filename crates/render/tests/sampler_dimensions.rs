@@ -175,8 +175,8 @@ fn direct_sample_counts_repeat_the_first_vertex_draws() {
     <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><translate y="-0.5"/></transform></shape>
 </scene>"#;
     let scene = common::load_xml(dir.path(), "direct", xml, 16);
-    let settings = render::technique::plan_from_flags(&scene, &[]).expect("a plan");
-    let render::technique::Transport::Path(settings) = settings.transport else {
+    let settings = render::plan::plan_from_flags(&scene, &[]).expect("a plan");
+    let render::plan::Transport::Path(settings) = settings.transport else {
         panic!("auto plans the path tracer");
     };
     let integrator = PathIntegrator::new(&scene.world, settings);

@@ -12,7 +12,7 @@ mod common;
 
 use common::{Target, load_xml, mis_power, render, z_test};
 use integrators::{LightSelection, Mis, PathSettings};
-use render::technique::Transport;
+use render::plan::Transport;
 use sampling::sampler::SamplerKind;
 
 const SIZE: u32 = 24;

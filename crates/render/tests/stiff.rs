@@ -18,7 +18,7 @@ use geometry::TriangleMesh;
 use glam::{UVec2, Vec2, Vec3};
 use integrators::RussianRoulette;
 use render::film::Film;
-use render::technique::Transport;
+use render::plan::Transport;
 use sampling::sampler::SamplerKind;
 use scene::RenderScene;
 use std::path::Path;

@@ -53,7 +53,7 @@ use common::compare::{POWER, Power, Replicates, check_unbiased, compare};
 use common::{Configuration, configurations_with, load_version, mis_power, scenes_dir};
 use integrators::{LightSelection, LightTracer, Mis, PathReuse, PathSettings};
 use render::auto::{REUSE_BLOCK, RIS_CANDIDATES, Trials};
-use render::technique::{RenderPlan, Transport, plan_from_flags};
+use render::plan::{RenderPlan, Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
 use scene::RenderScene;
 

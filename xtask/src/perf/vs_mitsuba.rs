@@ -63,8 +63,8 @@ use super::{median, positive, scene_path};
 use render::driver::{RenderOptions, RenderOutput};
 use render::image::Image;
 use render::metrics::relmse;
+use render::plan::plan_from_flags;
 use render::session::{film_filter, render_scene};
-use render::technique::plan_from_flags;
 use scene::RenderScene;
 use std::path::{Path, PathBuf};
 

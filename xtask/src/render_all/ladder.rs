@@ -4,7 +4,7 @@
 use integrators::reference::ReferenceSettings;
 use integrators::{DirectSamples, LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
 use render::auto::{REUSE_BLOCK, Trials};
-use render::technique::{RIS_CANDIDATES, RenderPlan, Transport};
+use render::plan::{RIS_CANDIDATES, RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use scene::SceneFeatures;
 
@@ -71,7 +71,7 @@ pub struct SceneTransport {
     pub hide_emitters: bool,
     /// The scene's Russian roulette start depth.
     pub roulette: RussianRoulette,
-    /// Whether caustics by light tracing apply (`render::technique::light_tracing_applies`).
+    /// Whether caustics by light tracing apply (`render::plan::light_tracing_applies`).
     pub light_tracing: bool,
     /// The sample counts of a `direct` integrator (`None` for `path`).
     pub direct_samples: Option<DirectSamples>,

@@ -18,7 +18,7 @@ pub use run::render_all;
 
 use integrators::RussianRoulette;
 use ladder::SceneTransport;
-use render::technique::{direct_samples, light_tracing_applies};
+use render::plan::{direct_samples, light_tracing_applies};
 use scene::RenderScene;
 use std::path::{Path, PathBuf};
 

@@ -11,8 +11,8 @@ use super::{SuiteScene, command_output, parse_scene_list, reference_path, scene_
 use integrators::{Mis, PathSettings};
 use render::atomic_write::write_bytes_atomically;
 use render::driver::RenderOptions;
+use render::plan::{RenderPlan, Transport};
 use render::session::{film_filter, render_scene};
-use render::technique::{RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
 use std::path::Path;
 

@@ -12,11 +12,9 @@ use render::auto::MAX_PILOT_SHARE;
 use render::driver::{RenderBudget, RenderOptions, RenderOutput};
 use render::image::Image;
 use render::metrics::{relmse, rmse};
+use render::plan::{AUTO_ADAPTIVE_MIN_SPP, RenderPlan, TIME_BUDGET_NOMINAL_SPP, plan_from_flags};
 use render::progress::Progress;
 use render::session::{film_filter, render_scene};
-use render::technique::{
-    AUTO_ADAPTIVE_MIN_SPP, RenderPlan, TIME_BUDGET_NOMINAL_SPP, plan_from_flags,
-};
 use std::path::Path;
 
 /// Time budgets in seconds of the full run. Three budgets of three seeds each fit the run in

@@ -32,7 +32,7 @@
 
 use super::render_plan;
 use glam::{DVec3, UVec2};
-use render::technique::RenderPlan;
+use render::plan::RenderPlan;
 use sampling::ztest::{sidak_alpha, welch_two_sided_p_value};
 use scene::RenderScene;
 use std::fmt;

@@ -1,4 +1,7 @@
 //! The blue-noise sampler: Kronecker point sets per pixel, shifted by a blue-noise dither array.
+//!
+//! **When `auto` uses it.** Only when asked, by `--sampler bluenoise` (Mitsuba has no such
+//! sampler, so no scene file names it).
 
 use super::Sampler;
 use super::blue_noise_tile::{BlueNoiseTile, TILE_LOG2, blue_noise_tile};

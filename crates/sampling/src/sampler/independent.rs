@@ -1,4 +1,8 @@
 //! The independent sampler: every dimension of every sample is a fresh uniform random number.
+//!
+//! **When `auto` uses it.** Never by itself: a scene's `independent` sampler (Mitsuba's
+//! default, which carries no intent) becomes Sobol under `auto`; `--sampler independent` or the
+//! other presets keep it.
 
 use super::Sampler;
 use crate::rng::Rng;

@@ -1,4 +1,8 @@
 //! The Sobol sampler: Owen-scrambled Sobol points, padded per dimension with shuffled indices.
+//!
+//! **When `auto` uses it.** By default: where the scene file names `independent` (or no
+//! sampler), `auto` renders with this one, whose prefixes stay stratified when a time budget
+//! stops the render at any sample count.
 
 use super::Sampler;
 use super::owen::{laine_karras, randomise, randomise_pair, sobol_0, sobol_1};

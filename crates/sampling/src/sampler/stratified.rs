@@ -1,4 +1,7 @@
 //! The stratified sampler: correlated multi-jittered strata (Kensler 2013) for any sample count.
+//!
+//! **When `auto` uses it.** When the scene file asks for `stratified`, `multijitter` or
+//! `orthogonal`, or `--sampler stratified` does: an explicit choice wins over `auto`'s Sobol.
 
 use super::Sampler;
 use super::strata::{Strata, closest_factorisation};

@@ -13,7 +13,7 @@ use sampling::SamplerKind;
 /// `volpath`, `direct`, …) ask for `auto`.
 ///
 /// A renderer resolves the preset, with the rest of [`IntegratorDesc`] and the scene's features,
-/// into the light transport it runs (`render::technique::Transport`: the reference path tracer
+/// into the light transport it runs (`render::plan::Transport`: the reference path tracer
 /// or the path tracer with every switch set).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
 pub enum IntegratorPreset {
