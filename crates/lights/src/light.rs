@@ -70,7 +70,7 @@ impl Light {
         let radiance = match self {
             Light::Mesh(l) => l.radiance(),
             Light::Sphere(l) => l.radiance,
-            Light::Moving(l) => return l.local().radiance_towards(ng, w),
+            Light::Moving(l) => l.radiance(),
             Light::Point(_)
             | Light::Spot(_)
             | Light::Directional(_)
