@@ -30,6 +30,7 @@ mod ris;
 use glam::{Vec2, Vec3};
 use lights::LightSelection;
 use lights::{Light, LightSample, LightSelector};
+use materials::Bsdf;
 use world::SurfaceHit;
 
 /// A light sample chosen for a shadow ray, with the BSDF already evaluated towards it.
@@ -86,9 +87,34 @@ fn evaluate(
     wo: Vec3,
     u_point: Vec2,
 ) -> Option<ChosenLight> {
-    let sample = light.sample_li(surface.hit.p, u_point, surface.hit.time)?;
+    // Speed only (see `path/bounce.rs`): an area light on a mesh seen from a diffuse surface
+    // inlined. Each arm finishes on its own: joined, both samples would go through the memory
+    // the out-of-line call returns in, and the inline one, stored and reloaded in pieces that
+    // straddle how it was stored, would stall.
+    match light {
+        Light::Mesh(mesh) => with_bsdf(mesh.sample_li(surface.hit.p, u_point)?, pmf, surface, wo),
+        light => with_bsdf(
+            light.sample_li(surface.hit.p, u_point, surface.hit.time)?,
+            pmf,
+            surface,
+            wo,
+        ),
+    }
+}
+
+/// [`evaluate`] once the light has given its `sample`.
+#[inline(always)]
+fn with_bsdf(
+    sample: LightSample,
+    pmf: f32,
+    surface: &SurfaceHit<'_>,
+    wo: Vec3,
+) -> Option<ChosenLight> {
     let wi = surface.frame.to_local(sample.wi);
-    let (f, pdf_bsdf_solid_angle) = surface.bsdf.eval_with_pdf(wo, wi);
+    let (f, pdf_bsdf_solid_angle) = match surface.bsdf {
+        Bsdf::Diffuse(diffuse) => diffuse.eval_with_pdf(wo, wi),
+        bsdf => bsdf.eval_with_pdf(wo, wi),
+    };
     let f_cos = f * wi.z.abs();
     if f_cos == Vec3::ZERO || sample.radiance == Vec3::ZERO {
         return None;
