@@ -4,9 +4,10 @@
 //! the box) below its ceiling, and two boxes 1e-3 apart, each seen up close — is rewritten as a
 //! Mitsuba file translated by 1e5 and by 1e6 along (1, 1, 1), and scaled by 1e-4 and by 1e4 about
 //! the world's origin, camera included ([`placed_xml`]: every shape's `to_world` gets the
-//! placement appended, the camera's `lookat` points move, its clip and focus distances and lens
-//! scale, point lights move and their intensity scales by the square of the scale). The loader
-//! reads the rewritten file as it would read a user's, and the image must not change.
+//! placement appended, each keyframe's for a moving shape; the camera's `lookat` points move,
+//! its clip and focus distances and lens scale; point lights move and their intensity scales by
+//! the square of the scale). The loader reads the rewritten file as it would read a user's, and
+//! the image must not change.
 //!
 //! The comparison is paired. Seed `s` renders the scene and its placed copy with the same random
 //! numbers, so their difference is zero except where rounding sends a path another way; per
@@ -158,9 +159,32 @@ fn named<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Option<Node<'a, 'i>> {
 }
 
 /// The edit that makes `node`'s `to_world` place it by `placement`: the placement's elements
-/// appended to its transform, or a transform of them alone where it has none.
+/// appended to its transform (to each keyframe's, where it moves), or a transform of them alone
+/// where it has none.
 fn to_world_edit(text: &str, node: Node, placement: Placement) -> Edit {
     match named(node, "to_world") {
+        Some(animation) if animation.has_tag_name("animation") => {
+            let keyframes: String = animation
+                .children()
+                .filter(Node::is_element)
+                .map(|keyframe| {
+                    let time = keyframe.attribute("time").expect("a keyframe has a time");
+                    let own: String = keyframe
+                        .children()
+                        .filter(Node::is_element)
+                        .map(|c| &text[c.range()])
+                        .collect();
+                    format!(
+                        r#"<transform time="{time}">{own}{}</transform>"#,
+                        placement.elements()
+                    )
+                })
+                .collect();
+            (
+                animation.range(),
+                format!(r#"<animation name="to_world">{keyframes}</animation>"#),
+            )
+        }
         Some(to_world) => {
             let own: String = to_world
                 .children()
@@ -638,13 +662,14 @@ fn check_suite(file: &str, extra: &[Technique]) {
 }
 
 /// The suite scenes the tests below cover, which must be all of them.
-const SUITE: [&str; 10] = [
+const SUITE: [&str; 11] = [
     "cbox-glass.xml",
     "cbox-mesh.xml",
     "cbox-smalllight.xml",
     "cbox.xml",
     "furnace.xml",
     "manylights.xml",
+    "motion.xml",
     "pointlight.xml",
     "softshadow.xml",
     "thinlens.xml",
@@ -696,6 +721,12 @@ fn furnace() {
 #[test]
 fn manylights() {
     check_suite("manylights.xml", &[]);
+}
+
+/// Moving boxes: their keyframes are placed, the rays go into their own space at their time.
+#[test]
+fn motion() {
+    check_suite("motion.xml", &[]);
 }
 
 #[test]
