@@ -11,11 +11,11 @@ use render::film_exr::write_film_exr;
 use render::filter::Filter;
 use render::fingerprint::scene_fingerprint;
 use render::image::Image;
+use render::plan::plan_from_flags;
 use render::session::{film_filter, render_scene};
 use render::shard;
 use render::stats::RenderStats;
 use render::stop::StopSignal;
-use render::plan::plan_from_flags;
 use scene::{LoadError, RenderScene};
 
 use crate::errors::{file_error, os_error, scene_error, value_error};
@@ -42,7 +42,7 @@ pub struct Scene {
 struct RenderRequest {
     spp: Option<u32>,
     time: Option<f64>,
-    integrator: String,
+    integrator: Option<String>,
     sampler: Option<String>,
     seed: Option<u64>,
     threads: Option<usize>,
@@ -55,13 +55,14 @@ struct RenderRequest {
 impl RenderRequest {
     /// The `strata render` flags that ask for this render.
     fn flags(&self) -> Vec<String> {
-        let mut flags = vec!["--integrator".to_string(), self.integrator.clone()];
+        let mut flags = Vec::new();
         let mut flag = |name: &str, value: Option<String>| {
             if let Some(value) = value {
                 flags.push(name.to_string());
                 flags.push(value);
             }
         };
+        flag("--integrator", self.integrator.clone());
         flag("--spp", self.spp.map(|s| s.to_string()));
         flag("--time", self.time.map(|t| t.to_string()));
         flag("--sampler", self.sampler.clone());
@@ -207,7 +208,9 @@ impl Scene {
     ///
     /// - `spp`: samples per pixel; `time`: a time budget in seconds (either or both; neither:
     ///   the scene's sample count).
-    /// - `integrator`: `auto` (or `path`), `reference`, `nee`, `mis` or `ris`.
+    /// - `integrator`: `auto` (or `path`), `reference`, `nee`, `mis` or `ris`; `None`: the
+    ///   scene's `<integrator type>` where it names one of these, else `auto` (as `strata
+    ///   render` without `--integrator`).
     /// - `sampler`: `independent`, `stratified`, `bluenoise`, `sobol`, or `None` for the
     ///   scene's (`auto` takes Sobol for Mitsuba's `independent`).
     /// - `seed`: the sampler seed (`None`: the scene's).
@@ -218,7 +221,7 @@ impl Scene {
     ///   piece that `strata.merge` (or `strata merge`) adds up exactly.
     /// - `out`: also write the EXR `strata render --out` writes (with the sums and the record
     ///   that merging needs), atomically.
-    #[pyo3(signature = (spp = Some(64), time = None, integrator = "auto".to_string(),
+    #[pyo3(signature = (spp = Some(64), time = None, integrator = None,
         sampler = None, seed = Some(0), threads = None, adaptive = None, max_depth = None,
         samples = None, out = None))]
     #[allow(clippy::too_many_arguments)]
@@ -227,7 +230,7 @@ impl Scene {
         py: Python<'py>,
         spp: Option<u32>,
         time: Option<f64>,
-        integrator: String,
+        integrator: Option<String>,
         sampler: Option<String>,
         seed: Option<u64>,
         threads: Option<usize>,

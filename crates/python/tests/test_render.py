@@ -84,6 +84,23 @@ def test_the_one_call_form_splits_defines_from_render_options(cli_render):
     assert np.array_equal(bits(image), bits(strata.read_exr(expected)))
 
 
+def test_the_scenes_integrator_is_the_default_as_on_the_command_line(cli_render, tmp_path):
+    """With no `integrator`, the scene's `<integrator type>` decides, as without --integrator."""
+    scene_path = tmp_path / "cbox-reference.xml"
+    text = (SCENES / "cbox.xml").read_text()
+    assert '<integrator type="path">' in text
+    scene_path.write_text(text.replace('<integrator type="path">', '<integrator type="reference">'))
+    scene = strata.load(scene_path, res=12)
+    image = scene.render(spp=3, seed=4, threads=1)
+    expected, stats = cli_render(scene_path, "-D", "res=12", "--spp", "3", "--seed", "4")
+    assert "reference" in stats["techniques"]
+    assert np.array_equal(bits(image), bits(strata.read_exr(expected)))
+    assert "reference" in scene.last_stats["techniques"]
+    # It can fail: `auto`, which the default used to be, renders other bits.
+    auto = scene.render(spp=3, seed=4, threads=1, integrator="auto")
+    assert not np.array_equal(bits(auto), bits(image))
+
+
 BAD_SCENE = """<scene version="3.0.0">
     <sensor type="perspective">
         <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>

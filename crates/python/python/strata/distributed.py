@@ -68,7 +68,7 @@ def render_piece(scene_path, defines, start, end, spp, options):
     }
 
 
-def render(scene_path, spp, client, shards=None, *, seed=0, integrator="auto", sampler=None,
+def render(scene_path, spp, client, shards=None, *, seed=0, integrator=None, sampler=None,
            max_depth=None, threads=None, retries=3, out=None, pieces_dir=None, **defines):
     """Renders `spp` samples per pixel of the scene at `scene_path` as `shards` Dask tasks on
     `client` and returns the merged image, a float32 array of shape (height, width, 3),
