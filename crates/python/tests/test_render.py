@@ -51,7 +51,10 @@ def test_arrays_and_files_equal_the_clis_bit_for_bit(scene_name, defines, option
     assert np.array_equal(bits(image), bits(expected))
     assert out.read_bytes() == cli_exr.read_bytes()
     stats = scene.last_stats
-    for key in ["spp", "pilot_spp", "passes", "rays", "shadow_rays", "techniques",
+    # Not `passes`: how the samples are split into passes follows the measured speed (a pass
+    # fills at most MAX_PASS_SECONDS), so one thread may take more passes than two; the image,
+    # compared above, does not depend on it.
+    for key in ["spp", "pilot_spp", "rays", "shadow_rays", "techniques",
                 "auto_choice", "nan_count", "inf_count"]:
         assert stats.get(key) == cli_stats.get(key), key
     # The comparison can fail: another seed gives other bits.
