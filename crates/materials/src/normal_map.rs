@@ -1,10 +1,9 @@
 //! Mitsuba's `normalmap`: a nested BSDF whose shading normal an RGB texture gives.
 
 use crate::bitmap::BitmapTexture;
-use crate::bsdf::{Bsdf, BsdfSample, Model};
-use crate::flags::BsdfFlags;
-use crate::perturbed::{AdapterOptions, Perturbed, SurfacePoint};
-use glam::{Vec2, Vec3};
+use crate::bsdf::{Bsdf, Model};
+use crate::perturbed::{AdapterOptions, Perturbed, SurfacePoint, forward_to_perturbed};
+use glam::Vec3;
 use std::sync::Arc;
 
 /// A nested BSDF seen through a shading frame whose normal a texture encodes: at surface
@@ -69,34 +68,7 @@ fn tangent(point: &SurfacePoint) -> Vec3 {
 }
 
 impl Model for NormalMap {
-    #[inline]
-    fn flags(&self) -> BsdfFlags {
-        self.perturbed.flags() | BsdfFlags::AT_SURFACE
-    }
-
-    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        self.perturbed.eval(wo, wi)
-    }
-
-    fn pdf_solid_angle(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.perturbed.pdf_solid_angle(wo, wi)
-    }
-
-    fn eval_with_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        self.perturbed.eval_with_pdf(wo, wi)
-    }
-
-    fn lobe_weight(&self, wo: Vec3, wi: Vec3) -> Option<f32> {
-        self.perturbed.lobe_weight(wo, wi)
-    }
-
-    fn sample(&self, wo: Vec3, u_lobe: f32, u_dir: Vec2) -> Option<BsdfSample> {
-        self.perturbed.sample(wo, u_lobe, u_dir)
-    }
-
-    fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
-        self.perturbed.sample_delta(wo, u_lobe)
-    }
+    forward_to_perturbed!();
 
     fn at_surface(&self, point: &SurfacePoint) -> Option<Bsdf> {
         Some(Bsdf::NormalMap(Self {
@@ -105,9 +77,5 @@ impl Model for NormalMap {
                 .with_normal(self.normal(point), tangent(point)),
             texture: Arc::clone(&self.texture),
         }))
-    }
-
-    fn albedo_hint(&self) -> Vec3 {
-        self.perturbed.nested.albedo_hint()
     }
 }

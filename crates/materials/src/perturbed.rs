@@ -7,6 +7,52 @@ use glam::{Vec2, Vec3};
 use sampling::Frame;
 use std::sync::Arc;
 
+/// The [`crate::bsdf::Model`] methods of an adapter whose `perturbed: Perturbed` field does the
+/// work (`normalmap`, `bumpmap`): each forwards to it, and the flags add
+/// [`BsdfFlags::AT_SURFACE`]. The adapter writes only `at_surface`, which turns the frame.
+macro_rules! forward_to_perturbed {
+    () => {
+        #[inline]
+        fn flags(&self) -> $crate::flags::BsdfFlags {
+            self.perturbed.flags() | $crate::flags::BsdfFlags::AT_SURFACE
+        }
+
+        fn eval(&self, wo: glam::Vec3, wi: glam::Vec3) -> glam::Vec3 {
+            self.perturbed.eval(wo, wi)
+        }
+
+        fn pdf_solid_angle(&self, wo: glam::Vec3, wi: glam::Vec3) -> f32 {
+            self.perturbed.pdf_solid_angle(wo, wi)
+        }
+
+        fn eval_with_pdf(&self, wo: glam::Vec3, wi: glam::Vec3) -> (glam::Vec3, f32) {
+            self.perturbed.eval_with_pdf(wo, wi)
+        }
+
+        fn lobe_weight(&self, wo: glam::Vec3, wi: glam::Vec3) -> Option<f32> {
+            self.perturbed.lobe_weight(wo, wi)
+        }
+
+        fn sample(
+            &self,
+            wo: glam::Vec3,
+            u_lobe: f32,
+            u_dir: glam::Vec2,
+        ) -> Option<$crate::bsdf::BsdfSample> {
+            self.perturbed.sample(wo, u_lobe, u_dir)
+        }
+
+        fn sample_delta(&self, wo: glam::Vec3, u_lobe: f32) -> Option<$crate::bsdf::BsdfSample> {
+            self.perturbed.sample_delta(wo, u_lobe)
+        }
+
+        fn albedo_hint(&self) -> glam::Vec3 {
+            self.perturbed.nested.albedo_hint()
+        }
+    };
+}
+pub(crate) use forward_to_perturbed;
+
 /// The geometry of a surface point that a BSDF depending on it needs ([`Bsdf::at_surface`]),
 /// every vector in the local shading frame of the hit (+z the shading normal, before a
 /// twosided's mirroring).
