@@ -86,13 +86,19 @@ pub const EXACT_FRACTION_BITS: i32 = 48;
 /// order that depends on how the samples were split into passes, a resumed render (whose passes
 /// split differently) must give the same bits as an uninterrupted one, and the sums of disjoint
 /// sample ranges rendered apart must add up to those of one render of all of them. Each term is
-/// rounded to the nearest step once (ties to even); sums saturate instead of wrapping.
+/// rounded to the nearest step once (ties to even); sums saturate instead of wrapping: [`Self::add`]
+/// at ±[`SATURATION`], [`Self::merge`] at the `i128` range.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ExactSum(pub [i128; 3]);
 
 /// 1.5 · 2⁵²: adding and subtracting it rounds an `f64` of magnitude below 2⁵¹ to an integer,
 /// ties to even, in two additions (where `f64::round` is a library call on baseline x86-64).
 const ROUNDING_BIAS: f64 = 6_755_399_441_055_744.0;
+
+/// Where [`ExactSum::add`] saturates: 2¹²⁶ steps, half the `i128` range, which leaves
+/// [`ExactSum::add_fast`] room to add its terms (each below 2⁵¹ steps) without a test for
+/// overflow: 2⁷⁵ of them would be needed to wrap.
+pub const SATURATION: i128 = 1 << 126;
 
 /// `x` rounded to the nearest integer, ties to even, saturated to the `i128` range.
 fn round_to_i128(x: f64) -> i128 {
@@ -110,19 +116,23 @@ impl ExactSum {
         let scale = 2f64.powi(EXACT_FRACTION_BITS);
         for (sum, v) in self.0.iter_mut().zip(value.to_array()) {
             // Non-finite values never reach the film.
-            *sum = sum.saturating_add(round_to_i128(v * scale));
+            *sum = sum
+                .saturating_add(round_to_i128(v * scale))
+                .clamp(-SATURATION, SATURATION);
         }
     }
 
     /// [`Self::add`] with one test of magnitude for all three channels instead of one each, for
-    /// the hot loop of splatting: the same bits.
+    /// the hot loop of splatting: the same bits, for a sum that only [`Self::add`] and this
+    /// method built. Terms below 2⁵¹ steps are added without a test for overflow, since such a
+    /// sum stays within [`SATURATION`] plus fewer terms than could make it wrap.
     #[inline]
     pub fn add_fast(&mut self, value: DVec3) {
         let scaled = value * 2f64.powi(EXACT_FRACTION_BITS);
         if scaled.abs().max_element() < 2f64.powi(51) {
             let rounded = (scaled + DVec3::splat(ROUNDING_BIAS)) - DVec3::splat(ROUNDING_BIAS);
             for (sum, r) in self.0.iter_mut().zip(rounded.to_array()) {
-                *sum = sum.saturating_add(r as i64 as i128);
+                *sum = sum.wrapping_add(i128::from(r as i64));
             }
         } else {
             self.add(value);
@@ -185,7 +195,14 @@ impl FilteredSum {
     pub fn add_expected(&mut self, count: u32, expected: f64) {
         let scale = 2f64.powi(EXACT_FRACTION_BITS);
         for (sum, w) in self.weight.iter_mut().zip([expected, expected * expected]) {
-            let term = round_to_i128(w * scale).saturating_mul(i128::from(count));
+            let scaled = w * scale;
+            let term = if scaled.abs() < 2f64.powi(51) {
+                // A 64 × 64-bit product, which cannot overflow: no library call.
+                let rounded = ((scaled + ROUNDING_BIAS) - ROUNDING_BIAS) as i64;
+                i128::from(rounded) * i128::from(count)
+            } else {
+                round_to_i128(scaled).saturating_mul(i128::from(count))
+            };
             *sum = sum.saturating_add(term);
         }
     }
