@@ -650,7 +650,8 @@ fn add_expected_weights(
                 let scale = 1.0 / f64::from(per_round);
                 splatter.for_each_expected(pixel, |target, expected| {
                     let at = target - origin;
-                    filtered[at.y as usize * row + at.x as usize].add_expected(taken, expected * scale);
+                    filtered[at.y as usize * row + at.x as usize]
+                        .add_expected(taken, expected * scale);
                 });
             }
             (region, filtered)

@@ -3,7 +3,10 @@
 //!
 //! # Layout
 //!
-//! One part, scan lines top row first, ZIP-compressed:
+//! One part, scan lines top row first, RLE-compressed: the low limbs of the exact sums below
+//! are as good as random, which deflate (ZIP) spends most of its time failing to compress (a
+//! 1920 × 1080 render took 8 s to write); run-length coding takes a seventh of the time for a
+//! file a quarter larger, and still folds the limbs that are zero.
 //!
 //! - `R`, `G`, `B` (float32): the image, as [`crate::image::Image::write_exr`] writes it.
 //! - `strata.count` (uint): per pixel, the samples in its sums (finite samples only).
@@ -311,7 +314,7 @@ pub fn write_film_exr(path: &Path, film: &Film, record: &RenderRecord) -> Result
         .other
         .insert(Text::from(SPP_ATTRIBUTE), AttributeValue::I32(spp));
     let encoding = Encoding {
-        compression: Compression::ZIP16,
+        compression: Compression::RLE,
         blocks: Blocks::ScanLines,
         line_order: LineOrder::Increasing,
     };
