@@ -96,7 +96,7 @@ pub struct ExactSum(pub [i128; 3]);
 const ROUNDING_BIAS: f64 = 6_755_399_441_055_744.0;
 
 /// Where [`ExactSum::add`] saturates: 2¹²⁶ steps, half the `i128` range, which leaves
-/// [`ExactSum::add_fast`] room to add its terms (each below 2⁵¹ steps) without a test for
+/// [`FilteredSum::add_weighted`] room to add its terms (each below 2⁵¹ steps) without a test for
 /// overflow: 2⁷⁵ of them would be needed to wrap.
 pub const SATURATION: i128 = 1 << 126;
 
@@ -119,23 +119,6 @@ impl ExactSum {
             *sum = sum
                 .saturating_add(round_to_i128(v * scale))
                 .clamp(-SATURATION, SATURATION);
-        }
-    }
-
-    /// [`Self::add`] with one test of magnitude for all three channels instead of one each, for
-    /// the hot loop of splatting: the same bits, for a sum that only [`Self::add`] and this
-    /// method built. Terms below 2⁵¹ steps are added without a test for overflow, since such a
-    /// sum stays within [`SATURATION`] plus fewer terms than could make it wrap.
-    #[inline]
-    pub fn add_fast(&mut self, value: DVec3) {
-        let scaled = value * 2f64.powi(EXACT_FRACTION_BITS);
-        if scaled.abs().max_element() < 2f64.powi(51) {
-            let rounded = (scaled + DVec3::splat(ROUNDING_BIAS)) - DVec3::splat(ROUNDING_BIAS);
-            for (sum, r) in self.0.iter_mut().zip(rounded.to_array()) {
-                *sum = sum.wrapping_add(i128::from(r as i64));
-            }
-        } else {
-            self.add(value);
         }
     }
 
@@ -181,10 +164,25 @@ impl FilteredSum {
     /// Adds one sample `value` (radiance) with weight `weight` to the weighted sums only.
     #[inline]
     pub fn add_weighted(&mut self, value: Vec3, weight: f32) {
-        if weight != 0.0 {
-            let v = (value * weight).as_dvec3();
-            self.sum.add_fast(v);
-            self.sum_sq.add_fast(v * v);
+        if weight == 0.0 {
+            return;
+        }
+        let v = (value * weight).as_dvec3();
+        let scale = 2f64.powi(EXACT_FRACTION_BITS);
+        let terms = [v.x, v.y, v.z, v.x * v.x, v.y * v.y, v.z * v.z].map(|t| t * scale);
+        // One test of magnitude for all six terms; then each is rounded by the bias, and its
+        // integer read off the bits: `x + bias` has unit spacing, so its bits less the bias's
+        // are `x` rounded to the nearest integer, ties to even: the bits of `ExactSum::add`.
+        if terms.iter().all(|t| t.abs() < 2f64.powi(51)) {
+            let rounded = terms
+                .map(|t| (t + ROUNDING_BIAS).to_bits() as i64 - ROUNDING_BIAS.to_bits() as i64);
+            let sums = self.sum.0.iter_mut().chain(self.sum_sq.0.iter_mut());
+            for (sum, r) in sums.zip(rounded) {
+                *sum = sum.wrapping_add(i128::from(r));
+            }
+        } else {
+            self.sum.add(v);
+            self.sum_sq.add(v * v);
         }
     }
 
@@ -599,17 +597,24 @@ mod tests {
     }
 
     #[test]
-    fn the_fast_exact_add_has_the_bits_of_the_plain_one() {
-        let (mut fast, mut plain) = (ExactSum::default(), ExactSum::default());
-        for v in [
-            DVec3::new(0.1, -2.5, 1e-20),
-            DVec3::new(7.999, 8.0, -8.001),
-            DVec3::new(1e20, -3.0, 0.5),
-            DVec3::new(2.5 * 2f64.powi(-48), -2.5 * 2f64.powi(-48), 3e7),
+    fn a_weighted_add_has_the_bits_of_plain_exact_adds() {
+        let mut fast = FilteredSum::default();
+        let (mut sum, mut sum_sq) = (ExactSum::default(), ExactSum::default());
+        for (v, w) in [
+            (Vec3::new(0.1, -2.5, 1e-20), 0.75),
+            (Vec3::new(7.999, 8.0, -8.001), 1.0),
+            (Vec3::new(1e20, -3.0, 0.5), 0.5),
+            (
+                Vec3::new(2.5 * 2f32.powi(-48), -2.5 * 2f32.powi(-48), 3e7),
+                1.0,
+            ),
+            (Vec3::new(3e3, 1.0, -1.0), -0.125),
         ] {
-            fast.add_fast(v);
-            plain.add(v);
-            assert_eq!(fast, plain, "{v}");
+            fast.add_weighted(v, w);
+            let scaled = (v * w).as_dvec3();
+            sum.add(scaled);
+            sum_sq.add(scaled * scaled);
+            assert_eq!((fast.sum, fast.sum_sq), (sum, sum_sq), "{v} × {w}");
         }
     }
 
