@@ -22,7 +22,7 @@ pub use crate::adaptive::Allocation;
 use crate::auto::TechniquePilot;
 use crate::budget::MAX_PASS_SECONDS;
 pub use crate::budget::{BudgetError, RenderBudget};
-use crate::film::{Film, FilteredSum, PixelSum};
+use crate::film::{Film, FilteredSum, PixelSum, SplatSum};
 use crate::filter::Splatter;
 use crate::plan::{RenderPlan, Transport};
 use crate::progress::Progress;
@@ -517,7 +517,7 @@ where
             let mut result = TileResult {
                 sums: tile.pixels().map(|pixel| *shared.pixel(pixel)).collect(),
                 filtered: match splatter {
-                    Some(_) => vec![FilteredSum::default(); region.pixel_count()],
+                    Some(_) => vec![SplatSum::default(); region.pixel_count()],
                     None => Vec::new(),
                 },
                 region,
@@ -610,7 +610,7 @@ where
             film.add_splat(pixel, value);
         }
         for (pixel, sums) in result.region.pixels().zip(&result.filtered) {
-            film.add_filtered(pixel, sums);
+            film.add_splat_sum(pixel, sums);
         }
         film.add_light_paths(result.light_paths);
         total.merge(result.counts);
@@ -746,7 +746,7 @@ struct TileResult {
     region: Tile,
     /// The camera samples splatted into `region`'s pixels, in [`Tile::pixels`] order; empty
     /// without a splatter.
-    filtered: Vec<FilteredSum>,
+    filtered: Vec<SplatSum>,
     /// Light paths' finite contributions anywhere on the film, in the order traced.
     splats: Vec<(UVec2, Vec3)>,
     /// Light paths traced.

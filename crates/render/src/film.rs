@@ -95,9 +95,7 @@ pub struct ExactSum(pub [i128; 3]);
 /// ties to even, in two additions (where `f64::round` is a library call on baseline x86-64).
 const ROUNDING_BIAS: f64 = 6_755_399_441_055_744.0;
 
-/// Where [`ExactSum::add`] saturates: 2¹²⁶ steps, half the `i128` range, which leaves
-/// [`FilteredSum::add_weighted`] room to add its terms (each below 2⁵¹ steps) without a test for
-/// overflow: 2⁷⁵ of them would be needed to wrap.
+/// Where [`ExactSum::add`] saturates: 2¹²⁶ steps, half the `i128` range.
 pub const SATURATION: i128 = 1 << 126;
 
 /// `x` rounded to the nearest integer, ties to even, saturated to the `i128` range.
@@ -162,25 +160,9 @@ impl FilteredSum {
     }
 
     /// Adds one sample `value` (radiance) with weight `weight` to the weighted sums only.
-    #[inline]
     pub fn add_weighted(&mut self, value: Vec3, weight: f32) {
-        if weight == 0.0 {
-            return;
-        }
-        let v = (value * weight).as_dvec3();
-        let scale = 2f64.powi(EXACT_FRACTION_BITS);
-        let terms = [v.x, v.y, v.z, v.x * v.x, v.y * v.y, v.z * v.z].map(|t| t * scale);
-        // One test of magnitude for all six terms; then each is rounded by the bias, and its
-        // integer read off the bits: `x + bias` has unit spacing, so its bits less the bias's
-        // are `x` rounded to the nearest integer, ties to even: the bits of `ExactSum::add`.
-        if terms.iter().all(|t| t.abs() < 2f64.powi(51)) {
-            let rounded = terms
-                .map(|t| (t + ROUNDING_BIAS).to_bits() as i64 - ROUNDING_BIAS.to_bits() as i64);
-            let sums = self.sum.0.iter_mut().chain(self.sum_sq.0.iter_mut());
-            for (sum, r) in sums.zip(rounded) {
-                *sum = sum.wrapping_add(i128::from(r));
-            }
-        } else {
+        if weight != 0.0 {
+            let v = (value * weight).as_dvec3();
             self.sum.add(v);
             self.sum_sq.add(v * v);
         }
@@ -242,6 +224,98 @@ impl FilteredSum {
         let weight_sq = self.weight[1] as f64 * 2f64.powi(-EXACT_FRACTION_BITS);
         ((self.sum_sq.value() - mean * mean * weight_sq).max(DVec3::ZERO) / (total * total))
             .as_vec3()
+    }
+}
+
+/// Terms [`SplatSum`] keeps in `i64` before it adds them to its exact sums: each is below 2⁵¹
+/// steps, so 2¹² of them cannot overflow.
+const MAX_PENDING_TERMS: u32 = 1 << 12;
+
+/// A tile's running [`FilteredSum::add_weighted`] for one pixel during a pass, the hot loop of
+/// splatting (25 targets per sample with Mitsuba's gaussian): the six terms of a sample (its
+/// weighted value and square per channel) are rounded together and added to `i64` sums, which
+/// go into the exact `i128` sums every [`MAX_PENDING_TERMS`] samples and at [`Self::merge_into`].
+/// Integer addition being exact, the result has the bits of [`FilteredSum::add_weighted`] for
+/// every sample (short of [`SATURATION`], which the two reach in different steps).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SplatSum {
+    /// Exact sums of `w L` and of `(w L)²` of the terms added or flushed so far.
+    exact: [ExactSum; 2],
+    /// Pending terms: `w L` per channel, then `(w L)²` per channel, in steps of the fixed point.
+    pending: [i64; 6],
+    /// Samples in `pending`.
+    pending_samples: u32,
+    /// Whether `exact` holds anything.
+    has_exact: bool,
+}
+
+impl SplatSum {
+    /// Adds one sample `value` (radiance) with weight `weight`: [`FilteredSum::add_weighted`].
+    #[inline]
+    pub fn add_weighted(&mut self, value: Vec3, weight: f32) {
+        if weight == 0.0 {
+            return;
+        }
+        let v = (value * weight).as_dvec3();
+        let scale = 2f64.powi(EXACT_FRACTION_BITS);
+        let terms = [v.x, v.y, v.z, v.x * v.x, v.y * v.y, v.z * v.z].map(|t| t * scale);
+        // One test of magnitude for all six terms; then each is rounded by the bias, and its
+        // integer read off the bits: `x + bias` has unit spacing, so its bits less the bias's
+        // are `x` rounded to the nearest integer, ties to even: the bits of `ExactSum::add`.
+        if terms.iter().all(|t| t.abs() < 2f64.powi(51)) {
+            for (sum, t) in self.pending.iter_mut().zip(terms) {
+                *sum += (t + ROUNDING_BIAS).to_bits() as i64 - ROUNDING_BIAS.to_bits() as i64;
+            }
+            self.pending_samples += 1;
+            if self.pending_samples == MAX_PENDING_TERMS {
+                self.flush();
+            }
+        } else {
+            self.add_large(v);
+        }
+    }
+
+    /// Adds a weighted sample `v` with a term too large for the pending sums.
+    #[cold]
+    #[inline(never)]
+    fn add_large(&mut self, v: DVec3) {
+        self.has_exact = true;
+        self.exact[0].add(v);
+        self.exact[1].add(v * v);
+    }
+
+    /// Moves the pending terms into the exact sums.
+    #[cold]
+    #[inline(never)]
+    fn flush(&mut self) {
+        self.has_exact = true;
+        let [sum, sum_sq] = &mut self.exact;
+        add_pending(sum, sum_sq, &self.pending);
+        self.pending = [0; 6];
+        self.pending_samples = 0;
+    }
+
+    /// Adds the sums of every sample added here to `sums`.
+    #[inline]
+    pub fn merge_into(&self, sums: &mut FilteredSum) {
+        if self.has_exact {
+            sums.sum.merge(&self.exact[0]);
+            sums.sum_sq.merge(&self.exact[1]);
+        }
+        if self.pending_samples > 0 {
+            add_pending(&mut sums.sum, &mut sums.sum_sq, &self.pending);
+        }
+    }
+}
+
+/// Adds [`SplatSum`]'s pending terms to the sums of `w L` and `(w L)²`, saturating as
+/// [`ExactSum::add`].
+fn add_pending(sum: &mut ExactSum, sum_sq: &mut ExactSum, pending: &[i64; 6]) {
+    let exact = sum.0.iter_mut().chain(sum_sq.0.iter_mut());
+    for (sum, &term) in exact.zip(pending) {
+        *sum = sum
+            .saturating_add(i128::from(term))
+            .clamp(-SATURATION, SATURATION);
     }
 }
 
@@ -368,6 +442,13 @@ impl Film {
         assert!(!self.filtered.is_empty(), "the film does not splat");
         let i = self.index(pixel);
         self.filtered[i].merge(sums);
+    }
+
+    /// Adds a tile's splats into `pixel` ([`Self::add_filtered`] without building the sums).
+    pub fn add_splat_sum(&mut self, pixel: UVec2, sums: &SplatSum) {
+        assert!(!self.filtered.is_empty(), "the film does not splat");
+        let i = self.index(pixel);
+        sums.merge_into(&mut self.filtered[i]);
     }
 
     /// Per pixel (row-major, top row first) the exact sums of the light paths' splats and of
@@ -597,10 +678,14 @@ mod tests {
     }
 
     #[test]
-    fn a_weighted_add_has_the_bits_of_plain_exact_adds() {
-        let mut fast = FilteredSum::default();
-        let (mut sum, mut sum_sq) = (ExactSum::default(), ExactSum::default());
-        for (v, w) in [
+    fn a_tiles_splat_sum_has_the_bits_of_plain_exact_adds() {
+        let (mut fast, mut plain) = (SplatSum::default(), FilteredSum::default());
+        let finish = |fast: &SplatSum| {
+            let mut sums = FilteredSum::default();
+            fast.merge_into(&mut sums);
+            sums
+        };
+        let cases = [
             (Vec3::new(0.1, -2.5, 1e-20), 0.75),
             (Vec3::new(7.999, 8.0, -8.001), 1.0),
             (Vec3::new(1e20, -3.0, 0.5), 0.5),
@@ -609,13 +694,19 @@ mod tests {
                 1.0,
             ),
             (Vec3::new(3e3, 1.0, -1.0), -0.125),
-        ] {
+            (Vec3::new(0.3, 0.7, 2.0), 0.0),
+        ];
+        // Enough samples to flush the pending terms more than once.
+        for i in 0..3 * MAX_PENDING_TERMS as usize {
+            let (v, w) = cases[i % cases.len()];
+            let v = v * (1.0 + i as f32 * 1e-4);
             fast.add_weighted(v, w);
-            let scaled = (v * w).as_dvec3();
-            sum.add(scaled);
-            sum_sq.add(scaled * scaled);
-            assert_eq!((fast.sum, fast.sum_sq), (sum, sum_sq), "{v} × {w}");
+            plain.add_weighted(v, w);
+            if i % 997 == 0 {
+                assert_eq!(finish(&fast), plain, "{v} × {w} after {i}");
+            }
         }
+        assert_eq!(finish(&fast), plain);
     }
 
     #[test]
