@@ -234,7 +234,7 @@ const MAX_PENDING_TERMS: u32 = 1 << 12;
 /// A tile's running [`FilteredSum::add_weighted`] for one pixel during a pass, the hot loop of
 /// splatting (25 targets per sample with Mitsuba's gaussian): the six terms of a sample (its
 /// weighted value and square per channel) are rounded together and added to `i64` sums, which
-/// go into the exact `i128` sums every [`MAX_PENDING_TERMS`] samples and at [`Self::merge_into`].
+/// go into the exact `i128` sums every 4,096 samples and at [`Self::merge_into`].
 /// Integer addition being exact, the result has the bits of [`FilteredSum::add_weighted`] for
 /// every sample (short of [`SATURATION`], which the two reach in different steps).
 #[derive(Clone, Copy, Debug, Default)]
