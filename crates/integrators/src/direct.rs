@@ -54,12 +54,11 @@ impl PathIntegrator {
         // The light samples, or without light sampling the delta lights' shadow rays.
         if self.settings().sample_lights {
             for _ in 0..samples.light {
-                if let Some(light) =
-                    self.light_sample_drawn(world, surface, point, wo, sampler, counts)
-                    && let Some(direct) = light.unoccluded(world, counters)
-                {
-                    radiance += direct / counts.light;
-                }
+                self.light_samples_drawn(world, surface, point, wo, sampler, counts, |light| {
+                    if let Some(direct) = light.unoccluded(world, counters) {
+                        radiance += direct / counts.light;
+                    }
+                });
             }
         } else if samples.light > 0 && !surface.bsdf.flags().is_delta() {
             radiance += delta_lights(world, surface, point, wo, counters);

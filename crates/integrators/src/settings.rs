@@ -152,6 +152,7 @@ impl PathSettings {
                 LightSelection::Ris { candidates } => {
                     format!("light-selection-ris-{candidates}")
                 }
+                LightSelection::All => "light-selection-all".to_string(),
             });
             match self.mis {
                 Mis::Off => {}

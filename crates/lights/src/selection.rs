@@ -19,6 +19,11 @@ pub enum LightSelection {
         /// Number of candidates M (at least 1).
         candidates: u32,
     },
+    /// No choice: every light gets a light sample at every vertex, all from the vertex's one
+    /// point number (each light's estimate is unbiased alone, so their sum is), for one shadow
+    /// ray per light. No variance from the choice, at the cost of the rays: for scenes with a
+    /// few lights of similar importance.
+    All,
 }
 
 /// Picks lights with a fixed probability mass function over a scene's lights.
@@ -32,6 +37,11 @@ pub enum LightSelector {
     /// Probability proportional to a weight per light (power, selection weight or both), drawn
     /// from an alias table.
     Weighted(AliasTable),
+    /// Every light sampled at every vertex ([`LightSelection::All`]).
+    Every {
+        /// Number of lights.
+        count: u32,
+    },
 }
 
 impl LightSelector {
@@ -59,6 +69,9 @@ impl LightSelector {
             }
         };
         Some(match selection {
+            LightSelection::All => LightSelector::Every {
+                count: lights.len() as u32,
+            },
             LightSelection::Uniform => by_weight(),
             LightSelection::Power | LightSelection::Ris { .. } => {
                 let powers: Vec<f32> = lights
@@ -73,11 +86,12 @@ impl LightSelector {
         })
     }
 
-    /// The index of a light and its probability, for `u` uniform in [0, 1).
+    /// The index of a light and its probability, for `u` uniform in [0, 1) ([`LightSelector::Every`],
+    /// which never needs to choose, chooses uniformly).
     #[inline]
     pub fn select(&self, u: f32) -> (usize, f32) {
         match self {
-            LightSelector::Uniform { count } => {
+            LightSelector::Uniform { count } | LightSelector::Every { count } => {
                 let index = ((u * *count as f32) as u32).min(count - 1);
                 (index as usize, 1.0 / *count as f32)
             }
@@ -85,10 +99,12 @@ impl LightSelector {
         }
     }
 
-    /// Probability that [`Self::select`] returns `index`.
+    /// Expected light samples light `index` gets per vertex, what MIS weighs its density by:
+    /// the probability that [`Self::select`] returns it, or 1 for [`LightSelector::Every`].
     #[inline]
     pub fn pmf(&self, index: usize) -> f32 {
         match self {
+            LightSelector::Every { .. } => 1.0,
             LightSelector::Uniform { count } => 1.0 / *count as f32,
             LightSelector::Weighted(table) => table.pmf(index),
         }

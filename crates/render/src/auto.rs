@@ -4,9 +4,10 @@
 //! `auto` starts from the MIS preset minus what the scene cannot use (no light sampling without
 //! lights or without a non-delta BSDF, no MIS where no light can be hit, uniform light choice for
 //! one light: [`crate::plan::auto_settings`]). Each technique whose payoff depends on the
-//! scene is then a *trial* ([`Trials`]): RIS light selection and uniform light selection against
-//! power-proportional selection (several lights), Russian roulette off against on (paths bounded beyond the
-//! roulette's start), path reuse (diffuse materials), and light tracing off against on.
+//! scene is then a *trial* ([`Trials`]): RIS light selection, uniform light selection and a
+//! sample of every light against power-proportional selection (two or more lights), Russian
+//! roulette off against on (paths bounded beyond the roulette's start), path reuse (diffuse
+//! materials), and light tracing off against on.
 //!
 //! Caustics by light tracing are in the base wherever they apply (a delta BSDF, an area light,
 //! a camera that light paths can reach), and the trial is to switch them *off*: a caustic path
@@ -32,8 +33,8 @@
 //!
 //! A trial is kept when its efficiency beats the base's by more than twice the standard error
 //! of their log ratio (independent units: 4 × 4 pixel blocks, so that path reuse's correlated
-//! blocks count once). Trials that exclude each other (the two light selections; light tracing
-//! off and path reuse) keep only the better. When
+//! blocks count once). Trials that exclude each other (the light selections; light tracing
+//! off and path reuse) keep only the best. When
 //! two or more trials are kept their combination is measured too, and the best measured
 //! candidate wins. The pilot's samples are not in the image (its seeds differ from the image's),
 //! so the image stays unbiased whatever is chosen; its time counts in the render's.
@@ -103,6 +104,9 @@ pub struct Trials {
     /// overrates lights whose power mostly misses the scene, such as an environment around a
     /// large open scene, whose power grows with the scene's bounding sphere.
     pub uniform_lights: bool,
+    /// A light sample of every light at every vertex instead of a choice of one
+    /// ([`LightSelection::All`]; up to [`integrators::MAX_EVERY_LIGHT`] lights).
+    pub every_light: bool,
     /// Russian roulette off (only where `max_depth` bounds the paths).
     pub no_roulette: bool,
     /// Caustics by light tracing off (it is in the base wherever it applies: see the module
@@ -117,6 +121,7 @@ impl Trials {
     pub fn any(&self) -> bool {
         self.ris
             || self.uniform_lights
+            || self.every_light
             || self.no_roulette
             || self.no_light_tracing
             || self.path_reuse
@@ -127,6 +132,7 @@ impl Trials {
         [
             (self.ris, Switch::Ris),
             (self.uniform_lights, Switch::UniformLights),
+            (self.every_light, Switch::EveryLight),
             (self.no_roulette, Switch::NoRoulette),
             (self.no_light_tracing, Switch::NoLightTracing),
             (self.path_reuse, Switch::PathReuse),
@@ -142,6 +148,7 @@ impl Trials {
 enum Switch {
     Ris,
     UniformLights,
+    EveryLight,
     NoRoulette,
     NoLightTracing,
     PathReuse,
@@ -152,6 +159,7 @@ impl Switch {
         match self {
             Switch::Ris => "+ris",
             Switch::UniformLights => "+uniform-lights",
+            Switch::EveryLight => "+every-light",
             Switch::NoRoulette => "-roulette",
             Switch::NoLightTracing => "-light-tracing",
             Switch::PathReuse => "+path-reuse",
@@ -168,6 +176,10 @@ impl Switch {
             },
             Switch::UniformLights => PathSettings {
                 light_selection: LightSelection::Uniform,
+                ..settings
+            },
+            Switch::EveryLight => PathSettings {
+                light_selection: LightSelection::All,
                 ..settings
             },
             Switch::NoRoulette => PathSettings {
@@ -375,10 +387,11 @@ pub fn choose<E>(
         .filter(|(_, m)| significantly_better(m, &base_measured))
         .map(|(&s, m)| (s, m.efficiency()))
         .collect();
-    for group in [
-        [Switch::Ris, Switch::UniformLights],
-        [Switch::NoLightTracing, Switch::PathReuse],
-    ] {
+    let groups: [&[Switch]; 2] = [
+        &[Switch::Ris, Switch::UniformLights, Switch::EveryLight],
+        &[Switch::NoLightTracing, Switch::PathReuse],
+    ];
+    for group in groups {
         let best = kept
             .iter()
             .filter(|(s, _)| group.contains(s))
@@ -508,8 +521,11 @@ fn measure(
     } else {
         0.0
     };
+    // Light evaluations beyond the one a vertex's shading includes: RIS's candidates, and with
+    // every light sampled one per shadow ray.
     let ris_candidates = match settings.light_selection {
         LightSelection::Ris { candidates } => f64::from(candidates),
+        LightSelection::All => 1.0,
         _ => 0.0,
     };
     let rays = pilot.rays;
@@ -694,10 +710,11 @@ mod tests {
     }
 
     #[test]
-    fn one_light_selection_is_kept_of_two_that_beat_power() {
+    fn one_light_selection_is_kept_of_three_that_beat_power() {
         let trials = Trials {
             ris: true,
             uniform_lights: true,
+            every_light: true,
             ..Trials::default()
         };
         let choice = choose(base(), &trials, SIZE, |s| {
@@ -705,15 +722,16 @@ mod tests {
                 LightSelection::Power => renders(0.1, 100, 1),
                 LightSelection::Ris { .. } => renders(0.05, 100, 2),
                 LightSelection::Uniform => renders(0.03, 100, 3),
+                LightSelection::All => renders(0.02, 100, 4),
             })
         })
         .unwrap();
-        assert_eq!(choice.label, "+uniform-lights");
-        assert_eq!(choice.settings.light_selection, LightSelection::Uniform);
+        assert_eq!(choice.label, "+every-light");
+        assert_eq!(choice.settings.light_selection, LightSelection::All);
         assert_eq!(
             choice.measured.len(),
-            3,
-            "no combination of two light selections"
+            4,
+            "no combination of light selections"
         );
     }
 

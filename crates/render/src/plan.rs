@@ -6,7 +6,9 @@ use crate::cli::{Cli, Command, RenderArgs, ReuseFlag};
 use crate::driver::RenderBudget;
 use clap::Parser;
 use integrators::reference::ReferenceSettings;
-use integrators::{DirectSamples, LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
+use integrators::{
+    DirectSamples, LightSelection, MAX_EVERY_LIGHT, Mis, PathReuse, PathSettings, RussianRoulette,
+};
 use sampling::sampler::SamplerKind;
 use scene::{IntegratorDesc, IntegratorPreset, RenderScene, SceneDesc, SceneFeatures};
 
@@ -189,6 +191,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             trials = Trials {
                 ris: many_lights,
                 uniform_lights: many_lights,
+                every_light: many_lights && features.light_count <= MAX_EVERY_LIGHT,
                 no_roulette: args.rr.is_none()
                     && settings.direct_samples.is_none()
                     && settings

@@ -246,7 +246,14 @@ fn every_configuration(scene_spp: u32) -> Vec<Config> {
     let base = mis_power(Some(3), false);
     let mut list: Vec<_> = configurations_with(base, SamplerKind::Sobol)
         .into_iter()
-        .filter(|c| c.label != "light tracing" && c.label != "mis power uniform selection")
+        .filter(|c| {
+            ![
+                "light tracing",
+                "mis power uniform selection",
+                "mis power every light",
+            ]
+            .contains(&c.label)
+        })
         .map(|c| {
             // BSDF sampling alone finds the light by chance: it needs many more samples for the
             // same standard error; light sampling without MIS is as good as with it here.

@@ -1,5 +1,6 @@
 //! The path tracer draws the sampler dimensions its documentation lists, and only those the scene
-//! needs: per vertex the light choice (1D) only with more than one light, the light point (2D),
+//! needs: per vertex the light choice (1D) only with more than one light (and not when every light
+//! is sampled), the light point (2D),
 //! the BSDF lobe (1D) only when some material chooses a lobe (a dielectric), the BSDF direction
 //! (2D), and the roulette number (1D) only from roulette's start depth. Every path's sequence of
 //! draws must be a prefix of that per-vertex pattern repeated; a path may stop anywhere in it, and
@@ -10,7 +11,7 @@ mod common;
 
 use common::{load_file, mis_power, scenes_dir};
 use glam::{UVec2, Vec2};
-use integrators::{PathIntegrator, RussianRoulette};
+use integrators::{LightSelection, PathIntegrator, RussianRoulette};
 use sampling::Sampler;
 use sampling::sampler::IndependentSampler;
 use world::RayCounters;
@@ -61,11 +62,22 @@ fn vertex_pattern(depth: u32, light_choice: bool, lobe_choice: bool) -> Vec<u8> 
 /// Traces 16 × 16 pixels × 4 paths of `name` and checks every path's draws against the pattern;
 /// returns the longest sequence seen, so callers can check that roulette was reached.
 fn check(name: &str, light_choice: bool, lobe_choice: bool) -> usize {
+    check_selecting(name, LightSelection::Power, light_choice, lobe_choice)
+}
+
+/// [`check`] with `light_selection`.
+fn check_selecting(
+    name: &str,
+    light_selection: LightSelection,
+    light_choice: bool,
+    lobe_choice: bool,
+) -> usize {
     let scene = load_file(&scenes_dir().join(name), &[], 16, 16);
     let settings = integrators::PathSettings {
         russian_roulette: Some(RussianRoulette {
             start_depth: ROULETTE_START,
         }),
+        light_selection,
         ..mis_power(common::max_depth(&scene), false)
     };
     let depth = settings.max_depth.unwrap_or(64);
@@ -153,6 +165,16 @@ fn many_lights_add_the_light_choice_number() {
     assert_eq!(
         longest,
         draws_through(2, true, false),
+        "no path of manylights drew at its second vertex"
+    );
+}
+
+#[test]
+fn sampling_every_light_draws_no_choice_number() {
+    let longest = check_selecting("manylights.xml", LightSelection::All, false, false);
+    assert_eq!(
+        longest,
+        draws_through(2, false, false),
         "no path of manylights drew at its second vertex"
     );
 }

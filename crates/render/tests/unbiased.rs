@@ -61,9 +61,9 @@ use scene::RenderScene;
 const SIZE: u32 = 16;
 /// Family-wise significance level of one scene version's test: of every comparison it makes.
 const SCENE_ALPHA: f64 = 0.01;
-/// The most comparisons one scene version makes: 13 configurations, light-only and BSDF-only
-/// against MIS, 7 of `auto`'s candidates and `auto` end to end (23); `check_scene` asserts it.
-const MAX_COMPARISONS: usize = 24;
+/// The most comparisons one scene version makes: 14 configurations, light-only and BSDF-only
+/// against MIS, 8 of `auto`'s candidates and `auto` end to end (25); `check_scene` asserts it.
+const MAX_COMPARISONS: usize = 26;
 /// Family-wise significance level of one comparison (Bonferroni over the scene's comparisons).
 const ALPHA: f64 = SCENE_ALPHA / MAX_COMPARISONS as f64;
 /// Independent renders of each configuration and of the oracle.
@@ -195,7 +195,7 @@ fn changes_nothing(scene: &RenderScene, configuration: &Configuration) -> bool {
         "light tracing" => {
             LightTracer::new(&scene.world, settings, scene.camera.traits()).is_none()
         }
-        "mis power uniform selection" => scene.features.light_count <= 1,
+        "mis power uniform selection" | "mis power every light" => scene.features.light_count <= 1,
         _ => false,
     }
 }
@@ -383,6 +383,7 @@ fn environment_map() {
             trials: Trials {
                 ris: true,
                 uniform_lights: true,
+                every_light: true,
                 no_light_tracing: true,
                 path_reuse: true,
                 ..Trials::default()
@@ -757,6 +758,10 @@ fn check_auto(
         light_selection: LightSelection::Uniform,
         ..s
     };
+    let every_light = |s: PathSettings| PathSettings {
+        light_selection: LightSelection::All,
+        ..s
+    };
     let no_roulette = |s: PathSettings| PathSettings {
         russian_roulette: None,
         ..s
@@ -770,23 +775,27 @@ fn check_auto(
         light_tracing: false,
         ..s
     };
-    // The two light selections exclude each other (the pilot keeps the better), so "every
-    // trial" takes RIS, which comes first, and uniform selection is tried on its own.
-    let switches: [Switch; 5] = [
+    // The light selections exclude each other (the pilot keeps the best), so "every trial"
+    // takes the first one on, RIS, and the others are tried on their own.
+    let switches: [Switch; 6] = [
         (trials.ris, "+ris", &ris),
         (trials.uniform_lights, "+uniform-lights", &uniform_lights),
+        (trials.every_light, "+every-light", &every_light),
         (trials.no_roulette, "-roulette", &no_roulette),
         (trials.no_light_tracing, "-light-tracing", &no_light_tracing),
         (trials.path_reuse, "+path-reuse", &path_reuse),
     ];
     let mut candidates = vec![("auto base".to_string(), base)];
     let mut every = base;
+    let mut light_selection_taken = false;
     for (on, label, switch) in switches {
         if on {
             candidates.push((format!("auto base {label}"), switch(base)));
-            if !(label == "+uniform-lights" && trials.ris) {
+            let selects_lights = ["+ris", "+uniform-lights", "+every-light"].contains(&label);
+            if !(selects_lights && light_selection_taken) {
                 every = switch(every);
             }
+            light_selection_taken |= selects_lights;
         }
     }
     candidates.push(("auto base, every trial".to_string(), every));

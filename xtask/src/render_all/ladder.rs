@@ -2,7 +2,9 @@
 //! rung, plus `auto`; rungs that cannot apply to the scene are left out.
 
 use integrators::reference::ReferenceSettings;
-use integrators::{DirectSamples, LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
+use integrators::{
+    DirectSamples, LightSelection, MAX_EVERY_LIGHT, Mis, PathReuse, PathSettings, RussianRoulette,
+};
 use render::auto::{REUSE_BLOCK, Trials};
 use render::plan::{RIS_CANDIDATES, RenderPlan, Transport};
 use sampling::sampler::SamplerKind;
@@ -48,6 +50,8 @@ impl Configuration {
         }
         let trials = [
             (self.trials.ris, "ris-lights"),
+            (self.trials.uniform_lights, "uniform-lights"),
+            (self.trials.every_light, "every-light"),
             (self.trials.no_roulette, "no-roulette"),
             (self.trials.no_light_tracing, "no-light-tracing"),
             (self.trials.path_reuse, "path-reuse"),
@@ -193,7 +197,10 @@ pub fn ladder(
         let ris = LightSelection::Ris {
             candidates: RIS_CANDIDATES,
         };
-        for (name, light_selection) in [("uniform-lights", uniform), ("ris-lights", ris)] {
+        let every = (features.light_count <= MAX_EVERY_LIGHT)
+            .then_some(("every-light", LightSelection::All));
+        let selections = [("uniform-lights", uniform), ("ris-lights", ris)];
+        for (name, light_selection) in selections.into_iter().chain(every) {
             let settings = PathSettings {
                 light_selection,
                 ..best
@@ -360,6 +367,9 @@ mod tests {
         let many = ladder(&transport(), &features(4, false), &auto_plan());
         assert!(names(&many).contains(&"uniform-lights"));
         assert!(names(&many).contains(&"ris-lights"));
+        assert!(names(&many).contains(&"every-light"));
+        let crowd = ladder(&transport(), &features(9, false), &auto_plan());
+        assert!(!names(&crowd).contains(&"every-light"));
     }
 
     #[test]
@@ -388,6 +398,7 @@ mod tests {
             ("mis", Some("nee")),
             ("uniform-lights", Some("mis")),
             ("ris-lights", Some("mis")),
+            ("every-light", Some("mis")),
             ("+roulette", Some("mis")),
             ("+stratified", Some("+roulette")),
             ("+bluenoise", Some("+roulette")),

@@ -15,15 +15,17 @@
 //!
 //! with P(k) a fixed probability mass function, uniform 1/N or proportional to power
 //! Φ_k / Σ_j Φ_j ([`power`]), or resampled from several candidates by their estimated
-//! contribution at the shading point ([`ris`]).
+//! contribution at the shading point ([`ris`]); or no choice at all, one sample of every light
+//! ([`every`]).
 //!
 //! **When `auto` uses it.** Uniform choice for one light (there is nothing to choose), power for
-//! several; RIS and uniform choice are trials of `auto`'s pilot wherever there are several
-//! lights, kept when measured more efficient.
+//! several; RIS, uniform choice and every light are trials of `auto`'s pilot wherever there are
+//! several lights, kept when measured more efficient.
 //!
 //! Each choice is followed by one point on the chosen light and the BSDF evaluated towards it
 //! ([`evaluate`]), which is what the shadow ray's contribution needs.
 
+pub mod every;
 mod power;
 mod ris;
 
@@ -53,11 +55,13 @@ pub(crate) struct ChosenLight {
     pub pdf_bsdf_solid_angle: f32,
 }
 
-/// Picks a light and a point on it as `mode` says, from the shading point of `surface` with
-/// outgoing direction `wo` (local frame). `u_choice` (the light choice, and RIS's reservoir
-/// choice) and `u_point` come from the sampler, each from its own dimension.
+/// The light samples of one vertex as `mode` says, passed to `visit`: a light and a point on
+/// it (or, for [`LightSelection::All`], a point on each light), from the shading point of
+/// `surface` with outgoing direction `wo` (local frame). `u_choice` (the light choice, and
+/// RIS's reservoir choice) and `u_point` come from the sampler, each from its own dimension.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn choose_light(
+pub(crate) fn sample_lights(
     mode: LightSelection,
     selector: &LightSelector,
     lights: &[Light],
@@ -65,14 +69,22 @@ pub(crate) fn choose_light(
     wo: Vec3,
     u_choice: Vec2,
     u_point: Vec2,
-) -> Option<ChosenLight> {
-    match mode {
+    mut visit: impl FnMut(ChosenLight),
+) {
+    let chosen = match mode {
         LightSelection::Uniform | LightSelection::Power => {
             power::choose(selector, lights, surface, wo, u_choice.x, u_point)
         }
         LightSelection::Ris { candidates } => {
             ris::choose(candidates, selector, lights, surface, wo, u_choice, u_point)
         }
+        LightSelection::All => {
+            every::sample_each(lights, surface, wo, u_point, visit);
+            return;
+        }
+    };
+    if let Some(chosen) = chosen {
+        visit(chosen);
     }
 }
 

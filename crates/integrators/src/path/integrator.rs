@@ -47,7 +47,8 @@ impl PathIntegrator {
                 world.light_weights(),
                 settings.light_selection,
             ),
-            draws_light_choice: world.lights().len() > 1,
+            draws_light_choice: world.lights().len() > 1
+                && settings.light_selection != LightSelection::All,
             draws_reservoir_choice: world.lights().len() > 1
                 && matches!(settings.light_selection, LightSelection::Ris { .. }),
             draws_lobe_choice: world.has_lobe_choice(),

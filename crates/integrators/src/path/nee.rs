@@ -3,7 +3,8 @@
 //!
 //! **What it is.** The light arriving at a vertex is split into direct light, from the light
 //! sources, and indirect light, from everything else. Direct light is estimated by a light
-//! sample: [`crate::light_selection`] chooses a light and a point on it, the BSDF is evaluated
+//! sample (or one per light: [`crate::light_selection::every`]): [`crate::light_selection`]
+//! chooses a light and a point on it, the BSDF is evaluated
 //! towards it, and a shadow ray decides whether it is seen; the walk's BSDF sample then carries
 //! the indirect light. Small lights, which a BSDF sample rarely hits, are found at every vertex.
 //! Light that the BSDF sample finds as well is weighted by [MIS](super::mis). Without light
@@ -31,7 +32,7 @@
 use super::PathIntegrator;
 use super::mis::{ONE_EACH, StrategyCounts};
 use super::state::PathState;
-use crate::light_selection::choose_light;
+use crate::light_selection::sample_lights;
 use crate::optional_draw::next_1d_if;
 use geometry::{Ray, SpawnPoint};
 use glam::{Vec2, Vec3};
@@ -67,10 +68,11 @@ impl ShadowedLight {
 
 impl PathIntegrator {
     /// The walk's next event estimation at `surface` (whose point is `point`, seen from `wo`,
-    /// local frame) on `path`: one light sample, its radiance times the path's throughput, whose
-    /// shadow ray the walk traces once it has drawn the next direction (see [`ShadowedLight`]);
-    /// without light sampling, the light of every delta light, added to the path's estimate at
-    /// once. `None` where there is no shadow ray left to trace.
+    /// local frame) on `path`: its light samples, their radiance times the path's throughput;
+    /// the last one's shadow ray is left for the walk to trace once it has drawn the next
+    /// direction (see [`ShadowedLight`]), the others' (sampling every light) traced here. Without
+    /// light sampling, the light of every delta light, added to the path's estimate at once.
+    /// `None` where there is no shadow ray left to trace.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn next_event(
@@ -84,11 +86,19 @@ impl PathIntegrator {
         counters: &mut impl RayTally,
     ) -> Option<ShadowedLight> {
         if self.settings.sample_lights {
-            self.light_sample_drawn(world, surface, point, wo, sampler, ONE_EACH)
-                .map(|light| ShadowedLight {
+            let mut deferred = None;
+            self.light_samples_drawn(world, surface, point, wo, sampler, ONE_EACH, |light| {
+                let light = ShadowedLight {
                     radiance: path.throughput * light.radiance,
                     ..light
-                })
+                };
+                if let Some(earlier) = deferred.replace(light)
+                    && let Some(direct) = earlier.unoccluded(world, counters)
+                {
+                    path.radiance += direct;
+                }
+            });
+            deferred
         } else {
             if !surface.bsdf.flags().is_delta() {
                 path.radiance +=
@@ -98,12 +108,14 @@ impl PathIntegrator {
         }
     }
 
-    /// One light sample at `surface`, MIS-weighted against `counts` samples of each strategy,
-    /// with the shadow ray that decides it. It draws its numbers wherever it is asked, so that a
-    /// vertex draws the same dimensions whatever surface it is on; `None` at a delta surface or
-    /// where the sample carries nothing.
+    /// The light samples at `surface` (one, or one per light: [`sample_lights`]), each
+    /// MIS-weighted against `counts` samples of each strategy, with the shadow ray that decides
+    /// it, passed to `visit`. It draws its numbers wherever it is asked, so that a vertex draws
+    /// the same dimensions whatever surface it is on; nothing is visited at a delta surface or
+    /// for samples that carry nothing.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub(crate) fn light_sample_drawn(
+    pub(crate) fn light_samples_drawn(
         &self,
         world: &World,
         surface: &SurfaceHit<'_>,
@@ -111,28 +123,35 @@ impl PathIntegrator {
         wo: Vec3,
         sampler: &mut impl Sampler,
         counts: StrategyCounts,
-    ) -> Option<ShadowedLight> {
+        mut visit: impl FnMut(ShadowedLight),
+    ) {
         let u_choice = self.light_numbers(sampler);
         let u_point = sampler.next_2d();
         if surface.bsdf.flags().is_delta() {
-            return None;
+            return;
         }
-        let chosen = choose_light(
-            self.settings.light_selection,
-            self.selector.as_ref()?,
+        let Some(selector) = self.selector.as_ref() else {
+            return;
+        };
+        let mode = self.settings.light_selection;
+        sample_lights(
+            mode,
+            selector,
             world.lights(),
             surface,
             wo,
             u_choice,
             u_point,
-        )?;
-        let (ray, t_max) = shadow_ray(point, &chosen.sample);
-        let mis_weight = self.light_sample_weight(&chosen, surface, wo, counts);
-        Some(ShadowedLight {
-            ray,
-            t_max,
-            radiance: chosen.f_cos * chosen.sample.radiance * (chosen.weight * mis_weight),
-        })
+            |chosen| {
+                let (ray, t_max) = shadow_ray(point, &chosen.sample);
+                let mis_weight = self.light_sample_weight(&chosen, surface, wo, counts);
+                visit(ShadowedLight {
+                    ray,
+                    t_max,
+                    radiance: chosen.f_cos * chosen.sample.radiance * (chosen.weight * mis_weight),
+                });
+            },
+        );
     }
 
     /// The numbers a light sample chooses its light with: the light choice, and RIS's reservoir

@@ -206,7 +206,8 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
 
 /// Every switch of the path integrator turned on its own against `base` (MIS, power heuristic,
 /// power-proportional selection, independent sampler): BSDF-only, light-only, uniform directions,
-/// balance heuristic, uniform and RIS selection, roulette, stratified, blue-noise and Sobol samplers.
+/// balance heuristic, uniform, every-light and RIS selection, roulette, stratified, blue-noise and
+/// Sobol samplers.
 pub fn configurations(base: PathSettings) -> Vec<Configuration> {
     configurations_with(base, SamplerKind::Independent)
 }
@@ -275,6 +276,13 @@ fn switches(base: PathSettings, sampler: SamplerKind) -> Vec<Configuration> {
             "mis power uniform selection",
             PathSettings {
                 light_selection: LightSelection::Uniform,
+                ..base
+            },
+        ),
+        switch(
+            "mis power every light",
+            PathSettings {
+                light_selection: LightSelection::All,
                 ..base
             },
         ),
