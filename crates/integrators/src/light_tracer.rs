@@ -40,7 +40,6 @@ use crate::optional_draw::next_1d_if;
 use crate::{PathSettings, RussianRoulette};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
-use lights::Light;
 use sampling::Sampler;
 use sampling::distribution::CdfTable;
 use world::{BsdfSlot, CameraConnection, CameraTraits, RayTally, SurfaceHit, World};
@@ -76,12 +75,7 @@ impl LightTracer {
             return None;
         }
         let lights: Vec<u32> = (0..world.lights().len() as u32)
-            .filter(|&i| {
-                matches!(
-                    world.lights()[i as usize],
-                    Light::Mesh(_) | Light::Sphere(_) | Light::Moving(_)
-                )
-            })
+            .filter(|&i| world.lights()[i as usize].is_area())
             .collect();
         // Chosen by power times selection weight, as light sampling chooses them.
         let powers: Vec<f32> = lights

@@ -1,8 +1,9 @@
 //! Directional lights (Mitsuba's `directional` emitter): parallel light from infinitely far away,
 //! like the sun without its disc.
 
+use crate::light::{Emitter, Kind};
 use crate::sample::{LightSample, mean_rgb};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
 /// Light travelling along one direction with `irradiance` (W m⁻², RGB) on a surface facing it.
@@ -59,5 +60,27 @@ impl DirectionalLight {
     /// π r² of the scene's bounding sphere, as Mitsuba's emitter counts it.
     pub fn power(&self) -> f32 {
         PI * self.scene_radius * self.scene_radius * mean_rgb(self.irradiance)
+    }
+}
+
+impl Emitter for DirectionalLight {
+    const KIND: Kind = Kind::Delta;
+
+    #[inline]
+    fn sample_li(&self, p: Vec3, _u: Vec2, _time: f32) -> Option<LightSample> {
+        Some(DirectionalLight::sample_li(self, p))
+    }
+
+    fn towards(&self, _p: Vec3) -> Option<Vec3> {
+        Some(self.towards_light())
+    }
+
+    /// The irradiance itself, times |cos θ| at a surface with normal `n`.
+    fn irradiance_estimate(&self, _p: Vec3, n: Vec3) -> f32 {
+        self.irradiance() * self.towards_light().dot(n).abs()
+    }
+
+    fn power(&self) -> f32 {
+        DirectionalLight::power(self)
     }
 }

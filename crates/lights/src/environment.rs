@@ -1,5 +1,6 @@
 //! A constant environment (Mitsuba's `constant` emitter): the same radiance from every direction.
 
+use crate::light::{Emitter, Kind};
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Vec2, Vec3};
 use sampling::warp::{sample_uniform_sphere, uniform_sphere_pdf};
@@ -39,5 +40,33 @@ impl ConstantEnvironment {
     /// Power reaching the scene (W, mean over channels): radiance · π · π r² of the bounding disc.
     pub fn power(&self) -> f32 {
         mean_rgb(self.radiance) * PI * PI * self.scene_radius * self.scene_radius
+    }
+}
+
+impl Emitter for ConstantEnvironment {
+    const KIND: Kind = Kind::Environment;
+
+    #[inline]
+    fn sample_li(&self, p: Vec3, u: Vec2, _time: f32) -> Option<LightSample> {
+        ConstantEnvironment::sample_li(self, p, u)
+    }
+
+    #[inline]
+    fn radiance_from_direction(&self, _w: Vec3) -> Vec3 {
+        self.radiance
+    }
+
+    #[inline]
+    fn pdf_li_environment(&self, _w: Vec3) -> f32 {
+        self.pdf_li()
+    }
+
+    /// π times the mean radiance: the irradiance from a whole hemisphere.
+    fn irradiance_estimate(&self, _p: Vec3, _n: Vec3) -> f32 {
+        PI * mean_rgb(self.radiance)
+    }
+
+    fn power(&self) -> f32 {
+        ConstantEnvironment::power(self)
     }
 }

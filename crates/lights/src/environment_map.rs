@@ -1,6 +1,7 @@
 //! An environment map (Mitsuba's `envmap` emitter): radiance from infinitely far away, looked
 //! up in a latitude-longitude image, sampled in proportion to its brightness.
 
+use crate::light::{Emitter, Kind};
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Mat3, Vec2, Vec3};
 use sampling::distribution::CdfTable;
@@ -247,5 +248,33 @@ impl EnvironmentMap {
     /// bounding disc, as for a constant environment.
     pub fn power(&self) -> f32 {
         self.mean_radiance * PI * PI * self.scene_radius * self.scene_radius
+    }
+}
+
+impl Emitter for EnvironmentMap {
+    const KIND: Kind = Kind::Environment;
+
+    #[inline]
+    fn sample_li(&self, p: Vec3, u: Vec2, _time: f32) -> Option<LightSample> {
+        EnvironmentMap::sample_li(self, p, u)
+    }
+
+    #[inline]
+    fn radiance_from_direction(&self, w: Vec3) -> Vec3 {
+        self.radiance(w)
+    }
+
+    #[inline]
+    fn pdf_li_environment(&self, w: Vec3) -> f32 {
+        self.pdf_li(w)
+    }
+
+    /// π times the mean radiance over the sphere.
+    fn irradiance_estimate(&self, _p: Vec3, _n: Vec3) -> f32 {
+        PI * self.mean_radiance()
+    }
+
+    fn power(&self) -> f32 {
+        EnvironmentMap::power(self)
     }
 }

@@ -10,6 +10,13 @@
 //! geometric normal points to; a point light has intensity in W/sr (a spot light on its axis); a
 //! directional light has irradiance in W/m²; a constant environment emits the same radiance from
 //! every direction, an environment map the radiance of a latitude-longitude image.
+//!
+//! The lights form a closed set, declared once by the `light_set!` list in `light.rs`: one line
+//! per light names its [`Light`] variant and the struct it holds, which implements the
+//! crate-private `Emitter` trait in its own file (the trait's defaults fit a light without a
+//! surface). Adding a light is that file, its line in the list, its XML parameters in the scene
+//! crate's `plugins/emitter.rs` (with its description in `desc/material.rs`), and its case in the
+//! scene crate's `tests/light_set.rs`, which fails until every kind of [`Light::KINDS`] has one.
 
 mod area_sample;
 mod directional;

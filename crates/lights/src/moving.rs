@@ -14,6 +14,7 @@ use sampling::Frame;
 use sampling::warp::sample_cosine_hemisphere;
 
 use crate::area_sample::{area_pdf_towards, area_sample_towards};
+use crate::light::{Emitter, Kind, one_sided};
 use crate::{EmissionSample, Light, LightSample, MeshAreaLight, SphereAreaLight};
 
 /// An area light (a mesh or sphere emitter in object space) moving with its shape.
@@ -129,6 +130,38 @@ impl MovingLight {
     pub fn power(&self) -> f32 {
         let volume = self.motion.at(0.5).volume_scale();
         self.local.power() * volume.powf(2.0 / 3.0)
+    }
+}
+
+impl Emitter for MovingLight {
+    const KIND: Kind = Kind::Area;
+
+    #[inline]
+    fn sample_li(&self, p: Vec3, u: Vec2, time: f32) -> Option<LightSample> {
+        MovingLight::sample_li(self, p, u, time)
+    }
+
+    #[inline]
+    fn sample_emission(&self, u_point: Vec2, u_dir: Vec2, time: f32) -> Option<EmissionSample> {
+        MovingLight::sample_emission(self, u_point, u_dir, time)
+    }
+
+    #[inline]
+    fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
+        one_sided(self.radiance(), ng, w)
+    }
+
+    #[inline]
+    fn pdf_li_surface(&self, p: Vec3, p_light: Vec3, n_light: Vec3, time: f32) -> f32 {
+        self.pdf_li(p, p_light, n_light, time)
+    }
+
+    fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
+        Some(self.bounds)
+    }
+
+    fn power(&self) -> f32 {
+        MovingLight::power(self)
     }
 }
 

@@ -1,7 +1,8 @@
 //! Isotropic point lights (Mitsuba's `point` emitter).
 
+use crate::light::{Emitter, Kind};
 use crate::sample::{LightSample, mean_rgb};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
 /// A point emitting `intensity` (W/sr, RGB) equally in all directions.
@@ -38,5 +39,22 @@ impl PointLight {
     /// Total emitted power (W, mean over channels): 4π · intensity.
     pub fn power(&self) -> f32 {
         4.0 * PI * mean_rgb(self.intensity)
+    }
+}
+
+impl Emitter for PointLight {
+    const KIND: Kind = Kind::Delta;
+
+    #[inline]
+    fn sample_li(&self, p: Vec3, _u: Vec2, _time: f32) -> Option<LightSample> {
+        PointLight::sample_li(self, p)
+    }
+
+    fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
+        Some((self.position, 0.0))
+    }
+
+    fn power(&self) -> f32 {
+        PointLight::power(self)
     }
 }

@@ -3,6 +3,7 @@
 
 use crate::area_sample::{area_pdf_towards, area_sample_towards};
 use crate::emission::{EmissionSample, lambertian_emission};
+use crate::light::{Emitter, Kind, one_sided};
 use crate::sample::{LightSample, mean_rgb};
 use glam::{Vec2, Vec3};
 use sampling::Frame;
@@ -162,5 +163,37 @@ impl SphereAreaLight {
     /// Emitted power (W, mean over channels): π · 4π r² · radiance.
     pub fn power(&self) -> f32 {
         PI * 4.0 * PI * self.radius * self.radius * mean_rgb(self.radiance)
+    }
+}
+
+impl Emitter for SphereAreaLight {
+    const KIND: Kind = Kind::Area;
+
+    #[inline]
+    fn sample_li(&self, p: Vec3, u: Vec2, _time: f32) -> Option<LightSample> {
+        SphereAreaLight::sample_li(self, p, u)
+    }
+
+    #[inline]
+    fn sample_emission(&self, u_point: Vec2, u_dir: Vec2, _time: f32) -> Option<EmissionSample> {
+        SphereAreaLight::sample_emission(self, u_point, u_dir)
+    }
+
+    #[inline]
+    fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
+        one_sided(self.radiance, ng, w)
+    }
+
+    #[inline]
+    fn pdf_li_surface(&self, p: Vec3, p_light: Vec3, n_light: Vec3, _time: f32) -> f32 {
+        self.pdf_li(p, p_light, n_light)
+    }
+
+    fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
+        Some((self.center, self.radius))
+    }
+
+    fn power(&self) -> f32 {
+        SphereAreaLight::power(self)
     }
 }

@@ -2,8 +2,9 @@
 //! axis and is zero beyond a cutoff angle.
 
 use crate::PointLight;
+use crate::light::{Emitter, Kind};
 use crate::sample::{LightSample, mean_rgb};
-use glam::{Mat3, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::PI;
 
 /// A point emitting `intensity` (W/sr, RGB) along its axis, with Mitsuba's falloff: full intensity
@@ -123,4 +124,27 @@ fn falloff_solid_angle(cutoff: f32, beam: f32) -> f32 {
         0.0
     };
     2.0 * PI * (full + ramp)
+}
+
+impl Emitter for SpotLight {
+    const KIND: Kind = Kind::Delta;
+
+    #[inline]
+    fn sample_li(&self, p: Vec3, _u: Vec2, _time: f32) -> Option<LightSample> {
+        SpotLight::sample_li(self, p)
+    }
+
+    fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
+        Some((self.position(), 0.0))
+    }
+
+    /// The irradiance itself, falloff and |cos θ| at `p` included.
+    fn irradiance_estimate(&self, p: Vec3, n: Vec3) -> f32 {
+        let cos = (self.position() - p).normalize_or_zero().dot(n).abs();
+        self.irradiance_facing(p) * cos
+    }
+
+    fn power(&self) -> f32 {
+        SpotLight::power(self)
+    }
 }

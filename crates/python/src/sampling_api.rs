@@ -19,6 +19,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(warp_pdf, m)?)?;
     m.add_function(wrap_pyfunction!(warp_invert, m)?)?;
     m.add_function(wrap_pyfunction!(sampler_points, m)?)?;
+    // The samplers' names, from the one list of them (`SamplerKind::ALL`).
+    m.add("SAMPLERS", SamplerKind::ALL.map(SamplerKind::name).to_vec())?;
     Ok(())
 }
 

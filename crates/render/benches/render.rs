@@ -18,6 +18,7 @@ use geometry::Accel;
 use render::driver::RenderOptions;
 use render::plan::plan_from_flags;
 use render::session::{film_filter, render_scene, render_scene_recording};
+use sampling::SamplerKind;
 use scene::RenderScene;
 
 /// Image size of the Cornell box for the samples-per-second group (pixels per side).
@@ -124,7 +125,7 @@ fn samples(c: &mut Criterion) {
     group.throughput(Throughput::Elements(pixels * u64::from(SAMPLES_SPP)));
     let spp = SAMPLES_SPP.to_string();
     for integrator in ["reference", "nee", "mis", "ris", "auto"] {
-        for sampler in ["independent", "stratified", "bluenoise", "sobol"] {
+        for sampler in SamplerKind::ALL.map(SamplerKind::name) {
             if sampler != "independent" && integrator != "auto" {
                 continue;
             }

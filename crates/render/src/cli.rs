@@ -91,20 +91,11 @@ fn integrator_preset() -> impl TypedValueParser<Value = IntegratorPreset> {
     })
 }
 
-/// `--sampler`'s values: [`SamplerKind`]'s names, each with its help line, parsed by its
+/// `--sampler`'s values: [`SamplerKind`]'s names, each with its summary as help, parsed by its
 /// [`FromStr`](std::str::FromStr).
 fn sampler_kind() -> impl TypedValueParser<Value = SamplerKind> {
-    let help = |kind| match kind {
-        SamplerKind::Independent => "Independent uniform random numbers",
-        SamplerKind::Stratified => "Stratified (jittered) samples",
-        SamplerKind::BlueNoise => "Blue-noise samples",
-        SamplerKind::Sobol => {
-            "Owen-scrambled Sobol samples (a (0, 2)-net in every 2D dimension at every \
-             power-of-two count)"
-        }
-    };
     PossibleValuesParser::new(
-        SamplerKind::ALL.map(|kind| PossibleValue::new(kind.name()).help(help(kind))),
+        SamplerKind::ALL.map(|kind| PossibleValue::new(kind.name()).help(kind.summary())),
     )
     .map(|name| name.parse::<SamplerKind>().expect("clap checked the name"))
 }
@@ -558,14 +549,17 @@ mod tests {
                 Some(preset)
             );
         }
-        for (name, sampler) in [
-            ("independent", SamplerKind::Independent),
-            ("stratified", SamplerKind::Stratified),
-            ("bluenoise", SamplerKind::BlueNoise),
-            ("sobol", SamplerKind::Sobol),
-        ] {
+        for sampler in SamplerKind::ALL {
             assert_eq!(
-                render_args(&["render", "s.xml", "--out", "o.exr", "--sampler", name]).sampler,
+                render_args(&[
+                    "render",
+                    "s.xml",
+                    "--out",
+                    "o.exr",
+                    "--sampler",
+                    sampler.name()
+                ])
+                .sampler,
                 Some(sampler)
             );
         }

@@ -60,7 +60,6 @@ use crate::atomic_write::write_atomically;
 use crate::film::{ExactSum, Film, FilteredSum, PixelSum, Splats};
 use crate::image::SPP_ATTRIBUTE;
 use crate::plan::RenderPlan;
-use sampling::sampler::SamplerKind;
 use scene::SceneDesc;
 
 /// The header attribute (a string) that records how a film was rendered.
@@ -230,11 +229,11 @@ pub struct RenderRecord {
 /// a pixel, as one line: Strata's version, the film (size, crop, filter), the light transport
 /// with every switch (`max_depth`, Russian roulette, MIS, light selection, light tracing, path
 /// reuse, …), the sampler kind and, where its numbers depend on it
-/// ([`pattern_depends_on_sample_count`]), the sample count its pattern is laid out for, and
+/// ([`SamplerKind::pattern_depends_on_sample_count`](sampling::SamplerKind::pattern_depends_on_sample_count)), the sample count its pattern is laid out for, and
 /// whether adaptive sampling was on. The render budget is left out: renders of different sample
 /// ranges of one render have the same settings.
 pub fn render_settings(plan: &RenderPlan, desc: &SceneDesc) -> String {
-    let pattern = if pattern_depends_on_sample_count(plan.sampler) {
+    let pattern = if plan.sampler.pattern_depends_on_sample_count() {
         format!(" pattern {}", plan.sampler_spp)
     } else {
         String::new()
@@ -254,18 +253,6 @@ pub fn render_settings(plan: &RenderPlan, desc: &SceneDesc) -> String {
         plan.sampler,
         if plan.adaptive { "on" } else { "off" }
     )
-}
-
-/// Whether the numbers of sample `i` of a pixel depend on the sample count the sampler is laid
-/// out for: they do for the stratified and blue-noise samplers (whose strata are blocks of that
-/// many samples), and not for the independent sampler (one random stream per sample) or the
-/// Owen-scrambled Sobol sequence (one point of an endless sequence per index), which only record
-/// the count. Renders with those two therefore merge whatever their `--spp`.
-pub fn pattern_depends_on_sample_count(kind: SamplerKind) -> bool {
-    match kind {
-        SamplerKind::Independent | SamplerKind::Sobol => false,
-        SamplerKind::Stratified | SamplerKind::BlueNoise => true,
-    }
 }
 
 /// Writes `film` and `record` to `path` in the layout of this module's documentation,
@@ -520,62 +507,9 @@ fn parse_record(text: &str) -> Result<(RenderRecord, u64), String> {
 #[cfg(test)]
 mod tests {
     use glam::{UVec2, Vec3};
-    use sampling::Sampler;
 
     use super::*;
     use crate::image::Image;
-
-    /// The first numbers of a few samples of a few pixels.
-    fn draws(mut sampler: impl Sampler) -> Vec<f32> {
-        let mut numbers = Vec::new();
-        for (pixel, index) in [
-            (UVec2::new(0, 0), 0),
-            (UVec2::new(3, 1), 5),
-            (UVec2::new(1, 7), 37),
-        ] {
-            sampler.start_pixel_sample(pixel, index);
-            numbers.push(sampler.next_1d());
-            numbers.extend(sampler.next_2d().to_array());
-            numbers.push(sampler.next_1d());
-        }
-        numbers
-    }
-
-    #[test]
-    fn samplers_said_not_to_depend_on_the_sample_count_do_not() {
-        use sampling::sampler::{
-            BlueNoiseSampler, IndependentSampler, SobolSampler, StratifiedSampler,
-        };
-        let same = |kind: SamplerKind| -> bool {
-            let (a, b) = (40, 64);
-            match kind {
-                SamplerKind::Independent => {
-                    draws(IndependentSampler::new(9, a)) == draws(IndependentSampler::new(9, b))
-                }
-                SamplerKind::Sobol => {
-                    draws(SobolSampler::new(9, a)) == draws(SobolSampler::new(9, b))
-                }
-                SamplerKind::Stratified => {
-                    draws(StratifiedSampler::new(9, a)) == draws(StratifiedSampler::new(9, b))
-                }
-                SamplerKind::BlueNoise => {
-                    draws(BlueNoiseSampler::new(9, a)) == draws(BlueNoiseSampler::new(9, b))
-                }
-            }
-        };
-        for kind in [
-            SamplerKind::Independent,
-            SamplerKind::Sobol,
-            SamplerKind::Stratified,
-            SamplerKind::BlueNoise,
-        ] {
-            assert_eq!(
-                same(kind),
-                !pattern_depends_on_sample_count(kind),
-                "{kind:?}"
-            );
-        }
-    }
 
     #[test]
     fn sample_ranges_join_find_overlaps_and_round_trip_as_text() {

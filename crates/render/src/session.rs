@@ -14,10 +14,7 @@ use glam::{UVec2, Vec2, Vec3};
 use integrators::path_reuse::{self, ReusablePath};
 use integrators::{LightTracer, PathIntegrator, reference};
 use sampling::Sampler;
-use sampling::sampler::{
-    BlueNoiseSampler, IndependentSampler, PrefixSampler, SamplerKind, SobolSampler,
-    StratifiedSampler,
-};
+use sampling::sampler::{PrefixSampler, SamplerModel, SamplerVisitor};
 use scene::{Camera, FilterDesc, RenderScene};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
@@ -364,25 +361,39 @@ const PATTERN_VERTICES: u32 = 2;
 fn render_sampled<T: RayTally + Default + Send>(
     context: &Context<'_, T>,
 ) -> Result<RenderOutput, BudgetError> {
-    let (seed, spp) = (context.plan.seed, context.plan.sampler_spp);
     let built = Integrators::new(context.scene, context.plan);
     let prefix = built.pattern_dimensions(
         context.view.camera.has_lens(),
         context.scene.world.has_motion() || context.view.camera.moves(),
     );
-    match context.plan.sampler {
-        SamplerKind::Independent => {
-            render_with(context, &built, || IndependentSampler::new(seed, spp))
+    context.plan.sampler.visit(RenderSampled {
+        context,
+        built: &built,
+        prefix,
+    })
+}
+
+/// [`render_with`] for the sampler type a [`SamplerKind`](sampling::SamplerKind) names: its
+/// pattern for the first `prefix` dimensions of each pixel sample and independent numbers
+/// after ([`PrefixSampler`]), or the sampler alone where its numbers are independent already.
+struct RenderSampled<'c, 'a, T> {
+    context: &'c Context<'a, T>,
+    built: &'c Integrators,
+    prefix: u32,
+}
+
+impl<T: RayTally + Default + Send> SamplerVisitor for RenderSampled<'_, '_, T> {
+    type Output = Result<RenderOutput, BudgetError>;
+
+    fn visit<S: SamplerModel>(self) -> Self::Output {
+        let (seed, spp) = (self.context.plan.seed, self.context.plan.sampler_spp);
+        if S::INDEPENDENT_DIMENSIONS {
+            render_with(self.context, self.built, || S::new(seed, spp))
+        } else {
+            render_with(self.context, self.built, || {
+                PrefixSampler::new(S::new(seed, spp), self.prefix, seed)
+            })
         }
-        SamplerKind::Stratified => render_with(context, &built, || {
-            PrefixSampler::new(StratifiedSampler::new(seed, spp), prefix, seed)
-        }),
-        SamplerKind::BlueNoise => render_with(context, &built, || {
-            PrefixSampler::new(BlueNoiseSampler::new(seed, spp), prefix, seed)
-        }),
-        SamplerKind::Sobol => render_with(context, &built, || {
-            PrefixSampler::new(SobolSampler::new(seed, spp), prefix, seed)
-        }),
     }
 }
 

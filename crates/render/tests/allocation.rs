@@ -18,6 +18,7 @@ use common::{load_file, suite_scenes};
 use render::driver::RenderOptions;
 use render::plan::plan_from_flags;
 use render::session::{film_filter, render_scene};
+use sampling::SamplerKind;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -91,7 +92,12 @@ fn renders_allocate_per_pass_not_per_sample() {
         .into_iter()
         .map(|preset| (preset, "independent", false))
         .collect();
-    configurations.extend(["stratified", "bluenoise", "sobol"].map(|s| ("auto", s, false)));
+    configurations.extend(
+        SamplerKind::ALL
+            .into_iter()
+            .filter(|&kind| kind != SamplerKind::Independent)
+            .map(|kind| ("auto", kind.name(), false)),
+    );
     configurations.extend([("auto", "sobol", true), ("reference", "stratified", true)]);
     let mut failures = Vec::new();
     let mut cases = 0;

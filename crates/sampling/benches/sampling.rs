@@ -57,12 +57,8 @@ fn warps(c: &mut Criterion) {
 }
 
 fn samplers(c: &mut Criterion) {
-    for (kind, name) in [
-        (SamplerKind::Independent, "independent"),
-        (SamplerKind::Stratified, "stratified"),
-        (SamplerKind::BlueNoise, "blue_noise"),
-        (SamplerKind::Sobol, "sobol"),
-    ] {
+    for kind in SamplerKind::ALL {
+        let name = kind.name();
         let mut group = c.benchmark_group(format!("sampler/{name}"));
         let mut sampler = AnySampler::new(kind, 1, 16);
         let mut n = 0_u32;

@@ -52,5 +52,5 @@ pub use reservoir::Reservoir;
 pub use rng::Rng;
 pub use sampler::{
     AnySampler, BlueNoiseSampler, IndependentSampler, PrefixSampler, Sampler, SamplerKind,
-    SobolSampler, StratifiedSampler, UnknownSamplerKind,
+    SamplerModel, SamplerVisitor, SobolSampler, StratifiedSampler, UnknownSamplerKind,
 };

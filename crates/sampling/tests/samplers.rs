@@ -4,20 +4,13 @@
 
 use glam::{UVec2, Vec2, Vec3};
 use sampling::chi2::{Chi2Config, Chi2Domain, chi2_discrete, chi2_test};
-use sampling::{
-    AnySampler, BlueNoiseSampler, IndependentSampler, Sampler, SamplerKind, SobolSampler,
-    StratifiedSampler,
-};
+use sampling::{AnySampler, Sampler, SamplerKind, SamplerModel, SamplerVisitor, StratifiedSampler};
 
-const KINDS: [SamplerKind; 4] = [
-    SamplerKind::Independent,
-    SamplerKind::Stratified,
-    SamplerKind::BlueNoise,
-    SamplerKind::Sobol,
-];
-/// Chi-square tests in this file: 4 kinds × (3 uniformity + 2 decorrelation) + 3 kinds × 2 × 3
-/// within-pixel decorrelation + 1.
-const CHI2_TESTS: u32 = 39;
+/// Every sampler of the set: each test of this file runs on all of them.
+const KINDS: [SamplerKind; SamplerKind::ALL.len()] = SamplerKind::ALL;
+/// Chi-square tests in this file: every kind × (3 uniformity + 2 decorrelation) + every kind but
+/// Sobol × 2 × 3 within-pixel decorrelation + 1 (39 for the four samplers).
+const CHI2_TESTS: u32 = 5 * KINDS.len() as u32 + 6 * (KINDS.len() as u32 - 1) + 1;
 
 /// One dimension's value: a 1D value is (x, 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,26 +69,22 @@ fn any_pixel_sample_replays_alone_whatever_came_before() {
     }
 }
 
+/// Draws of one pixel sample from the sampler type a kind names, built directly.
+struct DrawDirectly;
+
+impl SamplerVisitor for DrawDirectly {
+    type Output = Vec<Value>;
+
+    fn visit<S: SamplerModel>(self) -> Vec<Value> {
+        draw(&mut S::new(1, 8), UVec2::new(5, 9), 3)
+    }
+}
+
 #[test]
 fn any_sampler_is_the_sampler_it_wraps() {
-    let pixel = UVec2::new(5, 9);
-    let a = draw(
-        &mut AnySampler::new(SamplerKind::Independent, 1, 8),
-        pixel,
-        3,
-    );
-    assert_eq!(a, draw(&mut IndependentSampler::new(1, 8), pixel, 3));
-    let b = draw(
-        &mut AnySampler::new(SamplerKind::Stratified, 1, 8),
-        pixel,
-        3,
-    );
-    assert_eq!(b, draw(&mut StratifiedSampler::new(1, 8), pixel, 3));
-    let c = draw(&mut AnySampler::new(SamplerKind::BlueNoise, 1, 8), pixel, 3);
-    assert_eq!(c, draw(&mut BlueNoiseSampler::new(1, 8), pixel, 3));
-    let d = draw(&mut AnySampler::new(SamplerKind::Sobol, 1, 8), pixel, 3);
-    assert_eq!(d, draw(&mut SobolSampler::new(1, 8), pixel, 3));
     for kind in KINDS {
+        let wrapped = draw(&mut AnySampler::new(kind, 1, 8), UVec2::new(5, 9), 3);
+        assert_eq!(wrapped, kind.visit(DrawDirectly), "{kind:?}");
         let sampler = AnySampler::new(kind, 0, 0);
         assert_eq!(sampler.kind(), kind);
         assert_eq!(
@@ -109,19 +98,64 @@ fn any_sampler_is_the_sampler_it_wraps() {
 
 #[test]
 fn kinds_parse_from_their_names_and_nothing_else() {
-    assert_eq!(SamplerKind::ALL, KINDS);
     for kind in KINDS {
-        assert_eq!(kind.to_string().parse::<SamplerKind>(), Ok(kind));
+        assert_eq!(kind.to_string(), kind.name());
+        assert_eq!(kind.name().parse::<SamplerKind>(), Ok(kind));
+        assert!(!kind.summary().is_empty() && !kind.summary().contains('\n'));
     }
-    let names: Vec<String> = KINDS.iter().map(ToString::to_string).collect();
-    assert_eq!(names, ["independent", "stratified", "bluenoise", "sobol"]);
+    let mut names: Vec<&str> = KINDS.iter().map(|kind| kind.name()).collect();
+    names.sort_unstable();
+    names.dedup();
+    assert_eq!(names.len(), KINDS.len(), "two kinds share a name");
+    // The command line's names so far stay what they were.
+    for name in ["independent", "stratified", "bluenoise", "sobol"] {
+        assert_eq!(name.parse::<SamplerKind>().map(SamplerKind::name), Ok(name));
+    }
     for bad in ["", "Sobol", "blue-noise", "ldsampler", "halton"] {
         let error = bad.parse::<SamplerKind>().expect_err(bad).to_string();
+        assert!(
+            error.starts_with(&format!("no sampler called '{bad}' (expected ")),
+            "{error}"
+        );
+        for kind in KINDS {
+            assert!(error.contains(kind.name()), "{error} does not name {kind}");
+        }
+    }
+    let last = KINDS[KINDS.len() - 1];
+    let error = "halton".parse::<SamplerKind>().unwrap_err().to_string();
+    assert!(error.ends_with(&format!(" or {last})")), "{error}");
+}
+
+/// Whether the first numbers of a few samples of a few pixels are the same for the sampler laid
+/// out for 40 samples per pixel and for 64.
+struct SameForAnySampleCount;
+
+impl SamplerVisitor for SameForAnySampleCount {
+    type Output = bool;
+
+    fn visit<S: SamplerModel>(self) -> bool {
+        let draws = |spp| {
+            let mut sampler = S::new(9, spp);
+            [
+                (UVec2::new(0, 0), 0),
+                (UVec2::new(3, 1), 5),
+                (UVec2::new(1, 7), 37),
+            ]
+            .into_iter()
+            .map(|(pixel, index)| draw(&mut sampler, pixel, index))
+            .collect::<Vec<_>>()
+        };
+        draws(40) == draws(64)
+    }
+}
+
+#[test]
+fn samplers_said_not_to_depend_on_the_sample_count_do_not() {
+    for kind in KINDS {
         assert_eq!(
-            error,
-            format!(
-                "no sampler called '{bad}' (expected independent, stratified, bluenoise or sobol)"
-            )
+            kind.visit(SameForAnySampleCount),
+            !kind.pattern_depends_on_sample_count(),
+            "{kind:?}"
         );
     }
 }

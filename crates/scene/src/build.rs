@@ -5,14 +5,10 @@ use crate::camera::Camera;
 use crate::features::SceneFeatures;
 use crate::plugins::texture::affine_to_uv;
 use crate::{
-    BsdfDesc, EmitterDesc, Geometry, LoadError, MicrofacetDistribution, Roughness, SceneDesc,
-    ShapeDesc,
+    BsdfDesc, Geometry, LoadError, MicrofacetDistribution, Roughness, SceneDesc, ShapeDesc,
 };
 use geometry::{Aabb, Accel, Motion, Shape, Sphere, TriangleMesh};
-use lights::{
-    ConstantEnvironment, DirectionalLight, EnvironmentMap, Light, MeshAreaLight, MovingLight,
-    PointLight, SphereAreaLight, SpotLight,
-};
+use lights::{Light, MeshAreaLight, MovingLight, SphereAreaLight};
 use materials::{
     Blend, Bsdf, ComplexIor, Conductor, Dielectric, Diffuse, Microfacet, MicrofacetKind, Plastic,
     RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
@@ -128,51 +124,10 @@ pub fn build(mut desc: SceneDesc) -> Result<RenderScene, LoadError> {
         1.0
     };
     for emitter in &desc.emitters {
-        lights.push(match *emitter {
-            EmitterDesc::Point {
-                position,
-                intensity,
-                ..
-            } => Light::Point(PointLight {
-                position,
-                intensity,
-            }),
-            EmitterDesc::Spot {
-                position,
-                axes,
-                intensity,
-                cutoff_angle,
-                beam_width,
-                ..
-            } => Light::Spot(
-                SpotLight::new(position, axes, intensity, cutoff_angle, beam_width)
-                    .ok_or_else(|| error("scene".to_string(), "invalid spot light".to_string()))?,
-            ),
-            EmitterDesc::Directional {
-                direction,
-                irradiance,
-                ..
-            } => Light::Directional(
-                DirectionalLight::new(direction, irradiance, scene_radius).ok_or_else(|| {
-                    error("scene".to_string(), "invalid directional light".to_string())
-                })?,
-            ),
-            EmitterDesc::Constant { radiance, .. } => Light::Environment(ConstantEnvironment {
-                radiance,
-                scene_radius,
-            }),
-            EmitterDesc::EnvMap {
-                width,
-                height,
-                ref texels,
-                scale,
-                to_world,
-                ..
-            } => Light::EnvironmentMap(
-                EnvironmentMap::new(width, height, texels, scale, to_world, scene_radius)
-                    .map_err(|e| error("scene".to_string(), format!("envmap: {e}")))?,
-            ),
-        });
+        lights.push(
+            crate::plugins::emitter::scene_light(emitter, scene_radius)
+                .map_err(|m| error("scene".to_string(), m))?,
+        );
         light_weights.push(emitter.sampling_weight());
     }
     let camera = camera(&desc);

@@ -50,10 +50,7 @@ impl SceneFeatures {
             has_delta_bsdfs: materials
                 .iter()
                 .any(|m| m.flags().contains(BsdfFlags::DELTA)),
-            area_light_count: lights
-                .iter()
-                .filter(|l| matches!(l, Light::Mesh(_) | Light::Sphere(_) | Light::Moving(_)))
-                .count(),
+            area_light_count: lights.iter().filter(|l| l.is_area()).count(),
             has_environment: lights.iter().any(Light::is_environment),
             has_glossy_bsdfs: materials
                 .iter()

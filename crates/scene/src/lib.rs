@@ -23,7 +23,8 @@
 //! - `integrator`: path (and volpath, volpathmis: the path tracer, since no scene Strata reads
 //!   has media), direct. `sensor`: perspective, thinlens, orthographic. `film`: hdrfilm.
 //!   `rfilter`: box, tent, gaussian, mitchell, catmullrom, lanczos. `sampler`: independent,
-//!   stratified, multijitter, ldsampler, orthogonal. `shape`: obj, ply, rectangle, cube, disk,
+//!   stratified, multijitter, ldsampler, orthogonal, and Strata's own by their command-line
+//!   names (bluenoise, sobol). `shape`: obj, ply, rectangle, cube, disk,
 //!   sphere, cylinder, shapegroup and instance (baked into world space).
 //!   `bsdf`: diffuse, conductor, roughconductor, dielectric, roughdielectric, thindielectric,
 //!   plastic, roughplastic, twosided, blendbsdf. `emitter`: area (in a shape), point, spot,

@@ -38,10 +38,12 @@ pub(crate) fn camera_relative(desc: &mut SceneDesc) {
             Geometry::Sphere(sphere) => sphere.center -= offset,
         }
     }
-    for emitter in &mut desc.emitters {
-        if let EmitterDesc::Point { position, .. } | EmitterDesc::Spot { position, .. } = emitter {
-            *position -= offset;
-        }
+    for position in desc
+        .emitters
+        .iter_mut()
+        .filter_map(EmitterDesc::position_mut)
+    {
+        *position -= offset;
     }
 }
 

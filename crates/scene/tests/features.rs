@@ -880,6 +880,37 @@ fn mitsuba_samplers_map_to_the_nearest_strata_sampler() {
     assert_eq!(sampler("stratified", 10).sample_count, 10);
 }
 
+/// Every Strata sampler is a `<sampler type>` by its command-line name, read by the same
+/// `FromStr` as `--sampler` (`independent`, Mitsuba's default, reads as no choice, which renders
+/// independent samples); a name that is neither Strata's nor Mitsuba's is an error naming every
+/// sampler there is.
+#[test]
+fn strata_sampler_names_are_sampler_types() {
+    for kind in SamplerKind::ALL {
+        let read = sampler(kind.name(), 4);
+        assert_eq!(read.kind.unwrap_or_default(), kind, "{kind}");
+        assert_eq!(read.mitsuba_sample_count, 4, "{kind}");
+    }
+    let err = load(
+        "sampler-halton.xml",
+        "<scene version=\"3.0.0\"><integrator type=\"path\"/><sensor type=\"perspective\">\
+         <sampler type=\"halton\"/></sensor></scene>",
+    )
+    .expect_err("halton is no sampler");
+    assert!(
+        err.message.contains("unknown sampler type \"halton\""),
+        "{err}"
+    );
+    let supported = SamplerKind::ALL.map(SamplerKind::name).into_iter().chain([
+        "multijitter",
+        "orthogonal",
+        "ldsampler",
+    ]);
+    for name in supported {
+        assert!(err.message.contains(name), "{err} does not name {name}");
+    }
+}
+
 #[test]
 fn sampler_counts_follow_mitsuba_rounding() {
     let count = |plugin, sample_count| sampler(plugin, sample_count).mitsuba_sample_count;

@@ -104,11 +104,7 @@ fn selection_target(light: &Light, surface: &SurfaceHit<'_>, wo: Vec3, glossy: b
     if !glossy {
         return irradiance;
     }
-    let towards = match light {
-        Light::Directional(l) => Some(l.towards_light()),
-        _ => light.bounding_sphere().map(|(centre, _)| centre - p),
-    };
-    let lobe = match towards {
+    let lobe = match light.towards(p) {
         Some(towards) => {
             let towards = surface.frame.to_local(towards).normalize_or_zero();
             surface.bsdf.lobe_weight(wo, towards)

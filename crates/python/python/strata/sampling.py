@@ -14,6 +14,7 @@ copies: the numbers are those a render draws.
 
 import numpy as _np
 
+from ._strata import SAMPLERS as _SAMPLERS
 from ._strata import Rng, wang_hash
 from ._strata import sampler_points as _sampler_points
 from ._strata import warp_invert as _warp_invert
@@ -34,8 +35,8 @@ __all__ = [
     "wang_hash",
 ]
 
-#: The samplers' names, as `strata render --sampler` takes them.
-SAMPLERS = ("independent", "stratified", "bluenoise", "sobol")
+#: The samplers' names, as `strata render --sampler` takes them (the renderer's own list).
+SAMPLERS = tuple(_SAMPLERS)
 
 
 def _rows(x, columns, name):

@@ -206,8 +206,8 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
 
 /// Every switch of the path integrator turned on its own against `base` (MIS, power heuristic,
 /// power-proportional selection, independent sampler): BSDF-only, light-only, uniform directions,
-/// balance heuristic, uniform, every-light and RIS selection, roulette, stratified, blue-noise and
-/// Sobol samplers.
+/// balance heuristic, uniform, every-light and RIS selection, roulette, and every other sampler
+/// ([`SamplerKind::ALL`]).
 pub fn configurations(base: PathSettings) -> Vec<Configuration> {
     configurations_with(base, SamplerKind::Independent)
 }
@@ -216,15 +216,10 @@ pub fn configurations(base: PathSettings) -> Vec<Configuration> {
 /// and each of the other samplers is a configuration of its own (labelled by its name).
 pub fn configurations_with(base: PathSettings, sampler: SamplerKind) -> Vec<Configuration> {
     let mut list = switches(base, sampler);
-    for (kind, label) in [
-        (SamplerKind::Independent, "independent"),
-        (SamplerKind::Stratified, "stratified"),
-        (SamplerKind::BlueNoise, "blue noise"),
-        (SamplerKind::Sobol, "sobol"),
-    ] {
+    for kind in SamplerKind::ALL {
         if kind != sampler {
             list.push(Configuration {
-                label,
+                label: kind.name(),
                 settings: base,
                 sampler: kind,
             });

@@ -3,8 +3,8 @@
 //! **When `auto` uses it.** Only when asked, by `--sampler bluenoise` (Mitsuba has no such
 //! sampler, so no scene file names it).
 
-use super::Sampler;
 use super::blue_noise_tile::{BlueNoiseTile, TILE_LOG2, blue_noise_tile};
+use super::{Sampler, SamplerModel};
 use crate::hash::{hash2, mix32, permute};
 use crate::rng::unit_f32_from_bits;
 use glam::{UVec2, Vec2};
@@ -133,6 +133,19 @@ impl BlueNoiseSampler {
         let rank = self.tile.rank(x, y);
         let jitter = mix32(channel_key ^ self.pixel_hash);
         (rank << (32 - 2 * TILE_LOG2)) | (jitter >> (2 * TILE_LOG2))
+    }
+}
+
+impl SamplerModel for BlueNoiseSampler {
+    /// The lattice has `samples_per_pixel` points.
+    const PATTERN_DEPENDS_ON_SAMPLE_COUNT: bool = true;
+
+    fn new(seed: u32, samples_per_pixel: u32) -> Self {
+        BlueNoiseSampler::new(seed, samples_per_pixel)
+    }
+
+    fn samples_per_pixel(&self) -> u32 {
+        BlueNoiseSampler::samples_per_pixel(self)
     }
 }
 

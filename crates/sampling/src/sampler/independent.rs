@@ -4,7 +4,7 @@
 //! default, which carries no intent) becomes Sobol under `auto`; `--sampler independent` or the
 //! other presets keep it.
 
-use super::Sampler;
+use super::{Sampler, SamplerModel};
 use crate::rng::Rng;
 use glam::{UVec2, Vec2};
 
@@ -32,6 +32,22 @@ impl IndependentSampler {
     /// The number of samples per pixel given to [`IndependentSampler::new`].
     pub fn samples_per_pixel(&self) -> u32 {
         self.samples_per_pixel
+    }
+}
+
+impl SamplerModel for IndependentSampler {
+    /// One random stream per sample: sample `i` is the same whatever the count.
+    const PATTERN_DEPENDS_ON_SAMPLE_COUNT: bool = false;
+
+    /// Its numbers are independent already: the renderer draws them all from it.
+    const INDEPENDENT_DIMENSIONS: bool = true;
+
+    fn new(seed: u32, samples_per_pixel: u32) -> Self {
+        IndependentSampler::new(seed, samples_per_pixel)
+    }
+
+    fn samples_per_pixel(&self) -> u32 {
+        IndependentSampler::samples_per_pixel(self)
     }
 }
 

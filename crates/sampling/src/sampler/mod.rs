@@ -26,6 +26,16 @@
 //! [`PrefixSampler`] wraps any of them so that only the first dimensions of each pixel sample
 //! come from its pattern and the rest are independent numbers: the renderer stratifies the
 //! camera and the first bounces, where it pays, and draws deeper bounces cheaply.
+//!
+//! The samplers form a closed set, declared once by the `sampler_set!` list below: one line per
+//! sampler names its [`SamplerKind`] variant, its type (which implements [`Sampler`] and
+//! [`SamplerModel`] in its own file), its name on the command line and in scene files, and a
+//! one-line summary. [`SamplerKind::ALL`], the names' [`FromStr`], [`AnySampler`] and
+//! [`SamplerKind::visit`] (how the renderer reaches its per-sample code for each sampler type) are
+//! generated from it. Adding a sampler is its file, its line in the list (and the `mod` and `pub
+//! use` above), and its tests; the tests of `tests/samplers.rs` run on every kind of
+//! [`SamplerKind::ALL`]. A sampler takes only a seed and a sample count, which a scene file's
+//! `<sampler>` gives as `seed` and `sample_count` to all of them.
 
 mod blue_noise;
 mod blue_noise_tile;
@@ -59,43 +69,169 @@ pub trait Sampler {
     fn next_2d(&mut self) -> Vec2;
 }
 
-/// Which sampler an [`AnySampler`] is: the user-facing choice of sampling pattern.
-///
-/// Its names ([`SamplerKind::name`], [`Display`](fmt::Display) and [`FromStr`]) are the
-/// renderer's command-line names: `independent`, `stratified`, `bluenoise` and `sobol`. (A scene
-/// file names Mitsuba's samplers instead; the scene loader maps those onto these.)
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum SamplerKind {
-    /// [`IndependentSampler`]: independent uniform random numbers.
-    #[default]
-    Independent,
-    /// [`StratifiedSampler`]: jittered, multi-jittered strata permuted per pixel and dimension.
-    Stratified,
-    /// [`BlueNoiseSampler`]: blue-noise-shifted Kronecker point sets (screen-space blue-noise error).
-    BlueNoise,
-    /// [`SobolSampler`]: Owen-scrambled Sobol points padded per dimension (a (0, 2)-net in every
-    /// 2D dimension at every power-of-two prefix).
-    Sobol,
+/// What each sampler of the set provides besides [`Sampler`], so that code generic over the
+/// sampler type can be reached from a [`SamplerKind`] ([`SamplerKind::visit`]) and [`AnySampler`]
+/// can forward to it (see `sampler_set!`).
+pub trait SamplerModel: Sampler + Clone + fmt::Debug + Send + Sync + 'static {
+    /// Whether the numbers of sample `i` of a pixel depend on the sample count the sampler is
+    /// laid out for: they do where the pattern's strata are blocks of that many samples
+    /// (stratified, blue noise), not where every sample index has numbers of its own (one
+    /// random stream per sample, one point of an endless sequence per index). Renders of the
+    /// latter merge whatever their sample counts.
+    const PATTERN_DEPENDS_ON_SAMPLE_COUNT: bool;
+
+    /// Whether every dimension already holds independent numbers, so that a renderer gains
+    /// nothing by drawing the deeper dimensions independently ([`PrefixSampler`]) and draws
+    /// them all from this sampler. False for the samplers with a pattern.
+    const INDEPENDENT_DIMENSIONS: bool = false;
+
+    /// The sampler for `seed` and `samples_per_pixel` (0 is treated as 1).
+    fn new(seed: u32, samples_per_pixel: u32) -> Self;
+
+    /// The number of samples per pixel the pattern was built for.
+    fn samples_per_pixel(&self) -> u32;
 }
 
-impl SamplerKind {
-    /// Every kind, in the order the command line lists them.
-    pub const ALL: [SamplerKind; 4] = [
-        SamplerKind::Independent,
-        SamplerKind::Stratified,
-        SamplerKind::BlueNoise,
-        SamplerKind::Sobol,
-    ];
+/// Code generic over the sampler type, run for the type that a [`SamplerKind`] names by
+/// [`SamplerKind::visit`]: how a renderer compiles its per-sample code once per sampler, with
+/// sampling inlined rather than dispatched per number.
+pub trait SamplerVisitor {
+    /// What the visit returns.
+    type Output;
 
-    /// The kind's name: `independent`, `stratified`, `bluenoise` or `sobol`.
-    pub fn name(self) -> &'static str {
-        match self {
-            SamplerKind::Independent => "independent",
-            SamplerKind::Stratified => "stratified",
-            SamplerKind::BlueNoise => "bluenoise",
-            SamplerKind::Sobol => "sobol",
+    /// Runs with `S`, the sampler the kind names.
+    fn visit<S: SamplerModel>(self) -> Self::Output;
+}
+
+/// Declares the closed set of samplers once: each line names a [`SamplerKind`] variant, the
+/// sampler type it stands for (which implements [`SamplerModel`] in its own file), its
+/// command-line name and a one-line summary. Generates [`SamplerKind`] with [`SamplerKind::ALL`],
+/// its names, summaries, [`fmt::Display`], [`FromStr`] and [`SamplerKind::visit`], and
+/// [`AnySampler`] with its dispatch.
+macro_rules! sampler_set {
+    ($($(#[$attr:meta])* $variant:ident($ty:ident) = $name:literal, $summary:literal;)*) => {
+        /// Which sampler an [`AnySampler`] is: the user-facing choice of sampling pattern.
+        ///
+        /// Its names ([`SamplerKind::name`], [`Display`](fmt::Display) and [`FromStr`]) are
+        /// the renderer's command-line names, and a scene file's `<sampler type>` besides
+        /// Mitsuba's own sampler names (which the scene loader maps onto these).
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+        pub enum SamplerKind {
+            $($(#[$attr])* $variant,)*
         }
-    }
+
+        /// The number of samplers in the set.
+        const SAMPLER_COUNT: usize = [$($name),*].len();
+
+        impl SamplerKind {
+            /// Every kind, in the order the command line lists them.
+            pub const ALL: [SamplerKind; SAMPLER_COUNT] = [$(SamplerKind::$variant),*];
+
+            /// The kind's name, on the command line and in scene files.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(SamplerKind::$variant => $name,)*
+                }
+            }
+
+            /// What the sampler draws, in one line (the command line's help).
+            pub fn summary(self) -> &'static str {
+                match self {
+                    $(SamplerKind::$variant => $summary,)*
+                }
+            }
+
+            /// Runs `visitor` with the sampler type this kind names.
+            #[inline]
+            pub fn visit<V: SamplerVisitor>(self, visitor: V) -> V::Output {
+                match self {
+                    $(SamplerKind::$variant => visitor.visit::<$ty>(),)*
+                }
+            }
+
+            /// Whether the numbers of sample `i` of a pixel depend on the sample count the
+            /// sampler is laid out for ([`SamplerModel::PATTERN_DEPENDS_ON_SAMPLE_COUNT`]).
+            pub fn pattern_depends_on_sample_count(self) -> bool {
+                match self {
+                    $(SamplerKind::$variant => {
+                        <$ty as SamplerModel>::PATTERN_DEPENDS_ON_SAMPLE_COUNT
+                    })*
+                }
+            }
+        }
+
+        /// Any of the samplers behind one type, dispatched by `match` (no trait objects in the
+        /// hot loop).
+        #[derive(Clone, Debug)]
+        pub enum AnySampler {
+            $(#[doc = concat!("A [`", stringify!($ty), "`].")] $variant($ty),)*
+        }
+
+        impl AnySampler {
+            /// The sampler of the given kind for `seed` and `samples_per_pixel` (0 is treated
+            /// as 1).
+            pub fn new(kind: SamplerKind, seed: u32, samples_per_pixel: u32) -> Self {
+                match kind {
+                    $(SamplerKind::$variant => {
+                        Self::$variant(<$ty as SamplerModel>::new(seed, samples_per_pixel))
+                    })*
+                }
+            }
+
+            /// Which sampler this is.
+            pub fn kind(&self) -> SamplerKind {
+                match self {
+                    $(Self::$variant(_) => SamplerKind::$variant,)*
+                }
+            }
+
+            /// The number of samples per pixel the pattern was built for.
+            pub fn samples_per_pixel(&self) -> u32 {
+                match self {
+                    $(Self::$variant(s) => SamplerModel::samples_per_pixel(s),)*
+                }
+            }
+        }
+
+        impl Sampler for AnySampler {
+            #[inline]
+            fn start_pixel_sample(&mut self, pixel: UVec2, sample_index: u32) {
+                match self {
+                    $(Self::$variant(s) => s.start_pixel_sample(pixel, sample_index),)*
+                }
+            }
+
+            #[inline]
+            fn next_1d(&mut self) -> f32 {
+                match self {
+                    $(Self::$variant(s) => s.next_1d(),)*
+                }
+            }
+
+            #[inline]
+            fn next_2d(&mut self) -> Vec2 {
+                match self {
+                    $(Self::$variant(s) => s.next_2d(),)*
+                }
+            }
+        }
+    };
+}
+
+sampler_set! {
+    /// [`IndependentSampler`]: independent uniform random numbers.
+    #[default]
+    Independent(IndependentSampler) = "independent", "Independent uniform random numbers";
+    /// [`StratifiedSampler`]: jittered, multi-jittered strata permuted per pixel and dimension.
+    Stratified(StratifiedSampler) = "stratified", "Stratified (jittered) samples";
+    /// [`BlueNoiseSampler`]: blue-noise-shifted Kronecker point sets (screen-space blue-noise
+    /// error).
+    BlueNoise(BlueNoiseSampler) = "bluenoise", "Blue-noise samples";
+    /// [`SobolSampler`]: Owen-scrambled Sobol points padded per dimension (a (0, 2)-net in every
+    /// 2D dimension at every power-of-two prefix).
+    Sobol(SobolSampler) = "sobol",
+        "Owen-scrambled Sobol samples (a (0, 2)-net in every 2D dimension at every power-of-two \
+         count)";
 }
 
 impl fmt::Display for SamplerKind {
@@ -136,86 +272,3 @@ impl fmt::Display for UnknownSamplerKind {
 }
 
 impl std::error::Error for UnknownSamplerKind {}
-
-/// Any of the samplers behind one type, dispatched by `match` (no trait objects in the hot loop).
-#[derive(Clone, Debug)]
-pub enum AnySampler {
-    /// An [`IndependentSampler`].
-    Independent(IndependentSampler),
-    /// A [`StratifiedSampler`].
-    Stratified(StratifiedSampler),
-    /// A [`BlueNoiseSampler`].
-    BlueNoise(BlueNoiseSampler),
-    /// A [`SobolSampler`].
-    Sobol(SobolSampler),
-}
-
-impl AnySampler {
-    /// The sampler of the given kind for `seed` and `samples_per_pixel` (0 is treated as 1).
-    pub fn new(kind: SamplerKind, seed: u32, samples_per_pixel: u32) -> Self {
-        match kind {
-            SamplerKind::Independent => {
-                Self::Independent(IndependentSampler::new(seed, samples_per_pixel))
-            }
-            SamplerKind::Stratified => {
-                Self::Stratified(StratifiedSampler::new(seed, samples_per_pixel))
-            }
-            SamplerKind::BlueNoise => {
-                Self::BlueNoise(BlueNoiseSampler::new(seed, samples_per_pixel))
-            }
-            SamplerKind::Sobol => Self::Sobol(SobolSampler::new(seed, samples_per_pixel)),
-        }
-    }
-
-    /// Which sampler this is.
-    pub fn kind(&self) -> SamplerKind {
-        match self {
-            Self::Independent(_) => SamplerKind::Independent,
-            Self::Stratified(_) => SamplerKind::Stratified,
-            Self::BlueNoise(_) => SamplerKind::BlueNoise,
-            Self::Sobol(_) => SamplerKind::Sobol,
-        }
-    }
-
-    /// The number of samples per pixel the pattern was built for.
-    pub fn samples_per_pixel(&self) -> u32 {
-        match self {
-            Self::Independent(s) => s.samples_per_pixel(),
-            Self::Stratified(s) => s.samples_per_pixel(),
-            Self::BlueNoise(s) => s.samples_per_pixel(),
-            Self::Sobol(s) => s.samples_per_pixel(),
-        }
-    }
-}
-
-impl Sampler for AnySampler {
-    #[inline]
-    fn start_pixel_sample(&mut self, pixel: UVec2, sample_index: u32) {
-        match self {
-            Self::Independent(s) => s.start_pixel_sample(pixel, sample_index),
-            Self::Stratified(s) => s.start_pixel_sample(pixel, sample_index),
-            Self::BlueNoise(s) => s.start_pixel_sample(pixel, sample_index),
-            Self::Sobol(s) => s.start_pixel_sample(pixel, sample_index),
-        }
-    }
-
-    #[inline]
-    fn next_1d(&mut self) -> f32 {
-        match self {
-            Self::Independent(s) => s.next_1d(),
-            Self::Stratified(s) => s.next_1d(),
-            Self::BlueNoise(s) => s.next_1d(),
-            Self::Sobol(s) => s.next_1d(),
-        }
-    }
-
-    #[inline]
-    fn next_2d(&mut self) -> Vec2 {
-        match self {
-            Self::Independent(s) => s.next_2d(),
-            Self::Stratified(s) => s.next_2d(),
-            Self::BlueNoise(s) => s.next_2d(),
-            Self::Sobol(s) => s.next_2d(),
-        }
-    }
-}

@@ -4,8 +4,8 @@
 //! sampler), `auto` renders with this one, whose prefixes stay stratified when a time budget
 //! stops the render at any sample count.
 
-use super::Sampler;
 use super::owen::{laine_karras, randomise, randomise_pair, sobol_0, sobol_1};
+use super::{Sampler, SamplerModel};
 use crate::hash::mix64;
 use crate::rng::unit_f32_from_bits;
 use glam::{UVec2, Vec2};
@@ -102,6 +102,19 @@ impl SobolSampler {
     #[inline]
     fn shuffled_index(&self, base: u64) -> u32 {
         laine_karras(self.reversed_sample, Self::word(base, 0) as u32).reverse_bits()
+    }
+}
+
+impl SamplerModel for SobolSampler {
+    /// One point of an endless sequence per sample index.
+    const PATTERN_DEPENDS_ON_SAMPLE_COUNT: bool = false;
+
+    fn new(seed: u32, samples_per_pixel: u32) -> Self {
+        SobolSampler::new(seed, samples_per_pixel)
+    }
+
+    fn samples_per_pixel(&self) -> u32 {
+        SobolSampler::samples_per_pixel(self)
     }
 }
 

@@ -3,8 +3,8 @@
 //! **When `auto` uses it.** When the scene file asks for `stratified`, `multijitter` or
 //! `orthogonal`, or `--sampler stratified` does: an explicit choice wins over `auto`'s Sobol.
 
-use super::Sampler;
 use super::strata::{Strata, closest_factorisation};
+use super::{Sampler, SamplerModel};
 use crate::hash::{hash2, permute};
 use crate::rng::{Rng, sample_seed};
 use glam::{UVec2, Vec2};
@@ -70,6 +70,19 @@ impl StratifiedSampler {
         let key = hash2(self.pixel_key, self.dimension);
         self.dimension = self.dimension.wrapping_add(1);
         key
+    }
+}
+
+impl SamplerModel for StratifiedSampler {
+    /// The strata are blocks of `samples_per_pixel` samples.
+    const PATTERN_DEPENDS_ON_SAMPLE_COUNT: bool = true;
+
+    fn new(seed: u32, samples_per_pixel: u32) -> Self {
+        StratifiedSampler::new(seed, samples_per_pixel)
+    }
+
+    fn samples_per_pixel(&self) -> u32 {
+        StratifiedSampler::samples_per_pixel(self)
     }
 }
 

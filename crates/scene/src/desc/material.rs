@@ -297,4 +297,18 @@ impl EmitterDesc {
             } => sampling_weight,
         }
     }
+
+    /// The position of a light at a point (world units; relative to the camera once the
+    /// description is built), `None` for lights at infinity: what moving the scene's origin
+    /// moves.
+    pub(crate) fn position_mut(&mut self) -> Option<&mut Vec3> {
+        match self {
+            EmitterDesc::Point { position, .. } | EmitterDesc::Spot { position, .. } => {
+                Some(position)
+            }
+            EmitterDesc::Directional { .. }
+            | EmitterDesc::Constant { .. }
+            | EmitterDesc::EnvMap { .. } => None,
+        }
+    }
 }

@@ -300,7 +300,8 @@ impl FilmDesc {
 pub struct SamplerDesc {
     /// The Strata sampler nearest to the file's Mitsuba sampler: `stratified`, `multijitter`
     /// and `orthogonal` are [`SamplerKind::Stratified`], `ldsampler` (a scrambled (0, 2)-sequence)
-    /// is [`SamplerKind::Sobol`]. `None` for `independent`, Mitsuba's default, which nearly every
+    /// is [`SamplerKind::Sobol`]; any other [`SamplerKind`] name (`bluenoise`, `sobol`) is that
+    /// sampler, as on the command line. `None` for `independent`, Mitsuba's default, which nearly every
     /// Mitsuba file writes and which so carries no intent (also when the file has no
     /// `<sampler>`): a renderer then uses independent samples unless it picks its own (`strata
     /// render`'s `auto` takes Sobol).

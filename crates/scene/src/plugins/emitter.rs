@@ -7,6 +7,7 @@ use crate::desc::{AreaEmitterDesc, EmitterDesc};
 use crate::error::Result;
 use crate::params::{ColorKind, Params};
 use crate::xml::tree::ObjectNode;
+use lights::{ConstantEnvironment, DirectionalLight, EnvironmentMap, Light, PointLight, SpotLight};
 
 /// Interprets an `<emitter>` nested in a `<shape>`; only `area` is allowed there.
 pub(crate) fn area_emitter(node: &ObjectNode) -> Result<AreaEmitterDesc> {
@@ -32,69 +33,135 @@ pub(crate) fn area_emitter(node: &ObjectNode) -> Result<AreaEmitterDesc> {
     })
 }
 
+/// Reads the parameters of one type of top-level emitter into its description; positions are
+/// given relative to `origin` (world space), subtracted in double precision.
+type ReadEmitter = fn(&mut Params, DVec3) -> Result<EmitterDesc>;
+
+/// The emitters a scene holds at its top level, one line per light: Mitsuba's type name and the
+/// function that reads its parameters (its light is built by [`scene_light`]). An area emitter
+/// is read inside its shape instead ([`area_emitter`]).
+const SCENE_EMITTERS: [(&str, ReadEmitter); 5] = [
+    ("point", point),
+    ("spot", spot),
+    ("directional", directional),
+    ("constant", constant),
+    ("envmap", envmap),
+];
+
 /// Interprets an `<emitter>` at the top level of the scene; positions are given relative to
 /// `origin` (world space), subtracted in double precision.
 pub(crate) fn scene_emitter(node: &ObjectNode, origin: DVec3) -> Result<EmitterDesc> {
     no_children(node)?;
     let mut params = Params::new(node);
-    let emitter = match node.plugin.as_str() {
-        "point" => {
-            let position = params.point("position")?;
-            let to_world = params.transform("to_world")?;
-            let position = match (position, to_world) {
-                (Some(_), Some(_)) => {
-                    return Err(params
-                        .loc_of("to_world")
-                        .error("give either \"position\" or \"to_world\", not both"));
-                }
-                (Some(p), None) => p,
-                (None, Some(m)) => m.transform_point3(DVec3::ZERO),
-                (None, None) => DVec3::ZERO,
-            };
-            EmitterDesc::Point {
-                position: (position - origin).as_vec3(),
-                intensity: params
-                    .color("intensity", ColorKind::Emission, 1.0)?
-                    .as_vec3(),
-                sampling_weight: sampling_weight(&mut params)?,
-            }
-        }
-        "spot" => spot(&mut params, origin)?,
-        "directional" => directional(&mut params)?,
-        "constant" => EmitterDesc::Constant {
-            radiance: params
-                .color("radiance", ColorKind::Emission, 1.0)?
-                .as_vec3(),
-            sampling_weight: sampling_weight(&mut params)?,
-        },
-        "area" => {
+    let Some((_, read)) = SCENE_EMITTERS
+        .iter()
+        .find(|(name, _)| *name == node.plugin.as_str())
+    else {
+        if node.plugin == "area" {
             return Err(node
                 .loc
                 .error("an area emitter must be nested inside the <shape> that emits"));
         }
-        "envmap" => envmap(&mut params)?,
-        _ => {
-            return Err(unknown_type(
-                node,
-                &[
-                    "point",
-                    "spot",
-                    "directional",
-                    "constant",
-                    "envmap",
-                    "area (inside a shape)",
-                ],
-            ));
-        }
+        let mut supported: Vec<&str> = SCENE_EMITTERS.iter().map(|(name, _)| *name).collect();
+        supported.push("area (inside a shape)");
+        return Err(unknown_type(node, &supported));
     };
+    let emitter = read(&mut params, origin)?;
     params.finish()?;
     Ok(emitter)
+}
+
+/// The light of a top-level emitter's description, in a scene inside a sphere of
+/// `scene_radius` (world units; directional lights and environments count their power over
+/// it); an error message when the description cannot make one.
+pub(crate) fn scene_light(
+    emitter: &EmitterDesc,
+    scene_radius: f32,
+) -> std::result::Result<Light, String> {
+    Ok(match *emitter {
+        EmitterDesc::Point {
+            position,
+            intensity,
+            ..
+        } => Light::Point(PointLight {
+            position,
+            intensity,
+        }),
+        EmitterDesc::Spot {
+            position,
+            axes,
+            intensity,
+            cutoff_angle,
+            beam_width,
+            ..
+        } => Light::Spot(
+            SpotLight::new(position, axes, intensity, cutoff_angle, beam_width)
+                .ok_or("invalid spot light")?,
+        ),
+        EmitterDesc::Directional {
+            direction,
+            irradiance,
+            ..
+        } => Light::Directional(
+            DirectionalLight::new(direction, irradiance, scene_radius)
+                .ok_or("invalid directional light")?,
+        ),
+        EmitterDesc::Constant { radiance, .. } => Light::Environment(ConstantEnvironment {
+            radiance,
+            scene_radius,
+        }),
+        EmitterDesc::EnvMap {
+            width,
+            height,
+            ref texels,
+            scale,
+            to_world,
+            ..
+        } => Light::EnvironmentMap(
+            EnvironmentMap::new(width, height, texels, scale, to_world, scene_radius)
+                .map_err(|e| format!("envmap: {e}"))?,
+        ),
+    })
+}
+
+/// `point`: at `position`, or at the translation of `to_world` (not both; default the origin),
+/// with `intensity`.
+fn point(params: &mut Params, origin: DVec3) -> Result<EmitterDesc> {
+    let position = params.point("position")?;
+    let to_world = params.transform("to_world")?;
+    let position = match (position, to_world) {
+        (Some(_), Some(_)) => {
+            return Err(params
+                .loc_of("to_world")
+                .error("give either \"position\" or \"to_world\", not both"));
+        }
+        (Some(p), None) => p,
+        (None, Some(m)) => m.transform_point3(DVec3::ZERO),
+        (None, None) => DVec3::ZERO,
+    };
+    Ok(EmitterDesc::Point {
+        position: (position - origin).as_vec3(),
+        intensity: params
+            .color("intensity", ColorKind::Emission, 1.0)?
+            .as_vec3(),
+        sampling_weight: sampling_weight(params)?,
+    })
+}
+
+/// `constant`: the same `radiance` from every direction.
+fn constant(params: &mut Params, _origin: DVec3) -> Result<EmitterDesc> {
+    Ok(EmitterDesc::Constant {
+        radiance: params
+            .color("radiance", ColorKind::Emission, 1.0)?
+            .as_vec3(),
+        sampling_weight: sampling_weight(params)?,
+    })
 }
 
 /// `envmap`: a latitude-longitude image named by `filename` (relative to the scene file; OpenEXR,
 /// RGBE, or PNG and JPEG decoded from sRGB), with `scale` and `to_world`; Mitsuba's `mis_compensation` changes only how the map
 /// is sampled and is accepted without effect.
-fn envmap(params: &mut Params) -> Result<EmitterDesc> {
+fn envmap(params: &mut Params, _origin: DVec3) -> Result<EmitterDesc> {
     if params.has("bitmap") {
         return Err(params
             .loc_of("bitmap")
@@ -173,7 +240,7 @@ fn spot(params: &mut Params, origin: DVec3) -> Result<EmitterDesc> {
 }
 
 /// `directional`: travelling along `direction` or along `to_world` applied to +z (not both).
-fn directional(params: &mut Params) -> Result<EmitterDesc> {
+fn directional(params: &mut Params, _origin: DVec3) -> Result<EmitterDesc> {
     let direction = params.point("direction")?;
     let to_world = params.transform("to_world")?;
     let (direction, name) = match (direction, to_world) {

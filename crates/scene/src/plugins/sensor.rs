@@ -402,30 +402,31 @@ fn positive(params: &mut Params, name: &'static str, default: f64) -> Result<f32
     Ok(value as f32)
 }
 
+/// Mitsuba's samplers whose names are not Strata's, each with the Strata sampler nearest to it
+/// (see [`SamplerDesc::kind`]). Every other `<sampler type>` is a [`SamplerKind`] name, read by
+/// its [`FromStr`](std::str::FromStr) as the command line reads it.
+const MITSUBA_SAMPLERS: [(&str, SamplerKind); 3] = [
+    ("multijitter", SamplerKind::Stratified),
+    ("orthogonal", SamplerKind::Stratified),
+    // A scrambled (0, 2)-sequence with per-dimension shuffles.
+    ("ldsampler", SamplerKind::Sobol),
+];
+
 /// Interprets a `<sampler>` element: the one place where Mitsuba's sampler names meet
 /// Strata's samplers (see [`SamplerDesc::kind`]).
 fn sampler_desc(node: &ObjectNode) -> Result<SamplerDesc> {
     super::no_children(node)?;
     let mut params = Params::new(node);
     let plugin = node.plugin.as_str();
-    let kind = match plugin {
+    let kind = match MITSUBA_SAMPLERS.iter().find(|(name, _)| *name == plugin) {
+        Some(&(_, kind)) => Some(kind),
         // Mitsuba's default: no intent (see `SamplerDesc::kind`).
-        "independent" => None,
-        "stratified" | "multijitter" | "orthogonal" => Some(SamplerKind::Stratified),
-        // A scrambled (0, 2)-sequence with per-dimension shuffles.
-        "ldsampler" => Some(SamplerKind::Sobol),
-        _ => {
-            return Err(unknown_type(
-                node,
-                &[
-                    "independent",
-                    "stratified",
-                    "multijitter",
-                    "ldsampler",
-                    "orthogonal",
-                ],
-            ));
-        }
+        None if plugin == "independent" => None,
+        None => Some(plugin.parse::<SamplerKind>().map_err(|_| {
+            let strata = SamplerKind::ALL.map(SamplerKind::name);
+            let mitsuba = MITSUBA_SAMPLERS.map(|(name, _)| name);
+            unknown_type(node, &[&strata[..], &mitsuba[..]].concat())
+        })?),
     };
     if plugin == "orthogonal" {
         // The array's strength changes only how the dimensions are stratified together.
