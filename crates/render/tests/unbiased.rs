@@ -289,7 +289,7 @@ fn glass_and_mirror_cornell_box() {
     check_scene(
         "cbox-glass",
         LARGE_LIGHT_GLASS,
-        Budget::full(1024, 96, 2),
+        Budget::full(1024, 112, 2),
         Some(Auto {
             trials: Trials {
                 no_roulette: true,
