@@ -29,19 +29,20 @@
 //!
 //! **Power.** Each comparison is repeated on the configuration's image × (1 + bias) and on it
 //! with a typical 4 × 4 block × (1 + bias), and must reject both (see `common::compare`): 0.5%
-//! of the image and 5% of a block ([`Budget::full`]), except on the scenes whose oracle cannot
-//! converge that far in a test's time, which declare the biases they see ([`Budget::reduced`]).
-//! The budgets were chosen from the standard errors measured on each scene (at 16 replicates),
-//! so that each bias is about 6 standard errors or more of the image test and 7.3 of the block
-//! test, where the thresholds are about 4.3 and 5.5 (Student's t at these levels with 30–60
-//! degrees of freedom); a run prints each comparison's standard errors and how many standard
-//! errors each bias is.
+//! of the image and 5% of a block ([`POWER`]), on every scene. The budgets ([`Budget`]) were
+//! chosen from the standard errors measured on each scene, so that each bias is about 6
+//! standard errors or more of the image test and 7.3 of the block test, where the thresholds
+//! are about 4.3 and 5.5 (Student's t at these levels with 30–60 degrees of freedom); a run
+//! prints each comparison's standard errors and how many standard errors each bias is. Where
+//! the reference integrator converges too slowly for that, the scene's test version has larger
+//! lights or rougher surfaces (see **Scene versions**), never less power.
 //!
 //! **Scene versions.** Scenes are rendered at [`SIZE`]² pixels. Where the reference integrator
 //! cannot find a scene's lights often enough to converge in the time of a test run (its
 //! standard error falls as one over the square root of the samples, and a small light is found
-//! by a uniform direction once in hundreds or thousands), the test renders a version of the
-//! scene with larger lights, named in each test with the edit; the code paths are the same.
+//! by a uniform direction once in hundreds or thousands, and a narrow glossy lobe as rarely),
+//! the test renders a version of the scene with larger lights (of the same power) or rougher
+//! surfaces, named in each test with the edit; the code paths are the same.
 //!
 //! **Replay.** Seeds are fixed (oracle from [`ORACLE_SEED`], configurations from
 //! [`CONFIG_SEED`]); a failure names the scene, the configuration, both replicate sets (seeds,
@@ -49,7 +50,7 @@
 
 mod common;
 
-use common::compare::{POWER, Power, Replicates, check_unbiased, compare};
+use common::compare::{POWER, Replicates, check_unbiased, compare};
 use common::{Configuration, configurations_with, load_version, mis_power, scenes_dir};
 use integrators::{LightSelection, LightTracer, Mis, PathReuse, PathSettings};
 use render::auto::{REUSE_BLOCK, RIS_CANDIDATES, Trials};
@@ -127,29 +128,20 @@ struct Budget {
     /// independent sampler, whose random pixel positions make the edges of directly seen lights
     /// noisy), as a multiple of `config`.
     heavy_factor: u32,
-    /// The biases every comparison must see.
-    power: Power,
+    /// Configurations whose estimators are poor on this scene alone, by label, with the
+    /// multiple of `config` they are rendered at (instead of `heavy_factor`'s rule).
+    factors: &'static [(&'static str, u32)],
 }
 
 impl Budget {
-    /// Full power: 0.5% of the image, 5% of a block.
-    const fn full(oracle: u32, config: u32, heavy_factor: u32) -> Self {
+    /// Samples per pixel of the oracle, of each configuration, and the multiple of the latter
+    /// for the configurations poor on most scenes; no configuration poor on this scene alone.
+    const fn new(oracle: u32, config: u32, heavy_factor: u32) -> Self {
         Self {
             oracle,
             config,
             heavy_factor,
-            power: POWER,
-        }
-    }
-
-    /// Less power, where the reference integrator cannot converge on the scene in a test's time:
-    /// the smallest biases of the image and of a block (relative) every comparison sees.
-    const fn reduced(oracle: u32, config: u32, heavy_factor: u32, image: f64, block: f64) -> Self {
-        Self {
-            oracle,
-            config,
-            heavy_factor,
-            power: Power { image, block },
+            factors: &[],
         }
     }
 }
@@ -164,9 +156,20 @@ struct Auto {
     spp: u32,
 }
 
-/// Whether a configuration is rendered at [`Budget::heavy_factor`] times the samples.
-fn is_heavy(configuration: &Configuration) -> bool {
-    configuration.settings.mis == Mis::Off || configuration.sampler == SamplerKind::Independent
+impl Budget {
+    /// Samples per pixel of each replicate of `configuration`: [`Budget::factors`]' multiple
+    /// of `config` where it names the configuration, else `heavy_factor`'s where the estimator
+    /// is poor on most scenes (without MIS, or with the independent sampler), else `config`.
+    fn config_spp(&self, configuration: &Configuration) -> u32 {
+        let heavy = configuration.settings.mis == Mis::Off
+            || configuration.sampler == SamplerKind::Independent;
+        let factor = self
+            .factors
+            .iter()
+            .find(|(label, _)| *label == configuration.label)
+            .map_or(if heavy { self.heavy_factor } else { 1 }, |&(_, f)| f);
+        self.config * factor
+    }
 }
 
 /// The oracle's replicates.
@@ -220,11 +223,7 @@ fn check_scene(name: &str, version: Version, budget: Budget, auto: Option<Auto>)
         if changes_nothing(&scene, &configuration) {
             continue;
         }
-        let spp = if is_heavy(&configuration) {
-            budget.config * budget.heavy_factor
-        } else {
-            budget.config
-        };
+        let spp = budget.config_spp(&configuration);
         let Configuration {
             label,
             settings,
@@ -234,7 +233,7 @@ fn check_scene(name: &str, version: Version, budget: Budget, auto: Option<Auto>)
             RenderPlan::fixed_spp(Transport::Path(settings), sampler, seed, spp)
         });
         comparisons += 1;
-        if let Err(failure) = check_unbiased(name, &replicates, &oracle, ALPHA, budget.power) {
+        if let Err(failure) = check_unbiased(name, &replicates, &oracle, ALPHA, POWER) {
             failures.push(failure);
         }
         rendered.push(replicates);
@@ -245,6 +244,9 @@ fn check_scene(name: &str, version: Version, budget: Budget, auto: Option<Auto>)
             .find(|r| r.label == label)
             .unwrap_or_else(|| panic!("{label} was rendered"))
     };
+    for (label, _) in budget.factors {
+        find(label);
+    }
     let mis = find("mis power");
     for other in ["bsdf-only", "light-only (nee, no mis)"] {
         comparisons += 1;
@@ -275,7 +277,7 @@ fn point_light_and_rough_metal() {
     check_scene(
         "pointlight",
         Version::file("pointlight.xml"),
-        Budget::full(384, 160, 8),
+        Budget::new(384, 160, 8),
         None,
     );
 }
@@ -289,7 +291,7 @@ fn glass_and_mirror_cornell_box() {
     check_scene(
         "cbox-glass",
         LARGE_LIGHT_GLASS,
-        Budget::full(1024, 112, 2),
+        Budget::new(1024, 112, 2),
         Some(Auto {
             trials: Trials {
                 no_roulette: true,
@@ -310,7 +312,7 @@ fn moving_glass_and_mirror() {
     check_scene(
         "cbox-glass-motion",
         MOVING_GLASS,
-        Budget::full(1024, 96, 2),
+        Budget::new(1024, 96, 2),
         None,
     );
 }
@@ -362,7 +364,7 @@ fn plastic() {
     check_scene(
         "plastic",
         Version::file("../tests/crosscheck/plastic.xml"),
-        Budget::full(2048, 48, 16),
+        Budget::new(2048, 48, 16),
         None,
     );
 }
@@ -378,7 +380,7 @@ fn environment_map() {
             max_depth: Some(3),
             ..Version::file("../tests/crosscheck/envmap.xml")
         },
-        Budget::full(14336, 640, 4),
+        Budget::new(14336, 640, 4),
         Some(Auto {
             trials: Trials {
                 ris: true,
@@ -407,7 +409,7 @@ fn blend() {
             ],
             ..Version::file("../tests/crosscheck/blend.xml")
         },
-        Budget::full(1152, 96, 4),
+        Budget::new(1152, 96, 4),
         None,
     );
 }
@@ -420,7 +422,7 @@ fn checkerboard() {
     check_scene(
         "checkerboard",
         Version::file("../tests/crosscheck/checkerboard.xml"),
-        Budget::full(1920, 128, 4),
+        Budget::new(1920, 128, 4),
         None,
     );
 }
@@ -432,7 +434,7 @@ fn blend_weight_textures() {
     check_scene(
         "blend-texture",
         Version::file("../tests/crosscheck/blend-texture.xml"),
-        Budget::full(1536, 128, 4),
+        Budget::new(1536, 128, 4),
         None,
     );
 }
@@ -445,7 +447,7 @@ fn null_bsdf() {
     check_scene(
         "null",
         Version::file("../tests/crosscheck/null.xml"),
-        Budget::full(5376, 320, 2),
+        Budget::new(5376, 320, 2),
         None,
     );
 }
@@ -457,13 +459,26 @@ fn mask() {
     check_scene(
         "mask",
         Version {
+            replace: &[LARGE_CROSSCHECK_LIGHT],
             max_depth: Some(3),
             ..Version::file("../tests/crosscheck/mask.xml")
         },
-        Budget::reduced(1024, 64, 4, 0.02, 0.25),
+        Budget {
+            factors: &[("nee uniform directions", 5)],
+            ..Budget::new(4608, 272, 2)
+        },
         None,
     );
 }
+
+/// The rectangular light of the mask and textured-blend scenes with its edges doubled and its
+/// radiance a quarter (the same power).
+const LARGE_CROSSCHECK_LIGHT: (&str, &str) = (
+    r#"<scale x="1.0" y="0.6"/><rotate x="1" angle="60"/><translate x="-0.4" y="1.7" z="-0.6"/></transform>
+        <emitter type="area"><rgb name="radiance" value="3, 2.8, 2.6"/></emitter>"#,
+    r#"<scale x="2.0" y="1.2"/><rotate x="1" angle="60"/><translate x="-0.4" y="1.7" z="-0.6"/></transform>
+        <emitter type="area"><rgb name="radiance" value="0.75, 0.7, 0.65"/></emitter>"#,
+);
 
 /// Blends and masks of BSDFs with bitmap albedos (Mitsuba's leaf: a bitmap mask around a
 /// twosided diffuse with a bitmap reflectance; a JPEG diffuse blended with rough gold; a rough
@@ -472,8 +487,11 @@ fn mask() {
 fn textured_blends() {
     check_scene(
         "textured-blend",
-        Version::file("../tests/crosscheck/textured-blend.xml"),
-        Budget::reduced(1024, 64, 4, 0.01, 0.10),
+        Version {
+            replace: &[LARGE_CROSSCHECK_LIGHT],
+            ..Version::file("../tests/crosscheck/textured-blend.xml")
+        },
+        Budget::new(1024, 80, 3),
         None,
     );
 }
@@ -481,22 +499,31 @@ fn textured_blends() {
 /// Mitsuba's `volpath` on surfaces, where passes through null lobes (an invisible card, a
 /// thin pane, a mask, a glowing null sphere) are not path vertices, at `max_depth` 3 with and
 /// without hidden emitters, from the Mitsuba crosscheck scenes.
-/// The volpath scene's budget: the reference integrator's image of it converges slowly (its
-/// standard error after 2048 × 16 samples per pixel is about 0.2% of the image, 0.8% of a
-/// block).
-const VOLPATH: Budget = Budget::reduced(1024, 64, 4, 0.03, 0.15);
 
 #[test]
 fn volpath_null_vertices() {
-    let file = Version::file("../tests/crosscheck/volpath.xml");
-    check_scene("volpath", file, VOLPATH, None);
+    let file = Version {
+        // The ceiling light's edges ×2 and ×1.8, its radiance ÷ 3.6 (the same power).
+        replace: &[(
+            r#"<scale x="0.8" y="0.5"/><rotate x="1" angle="90"/><translate x="0.2" y="1.8" z="-0.5"/></transform>
+        <emitter type="area"><rgb name="radiance" value="6, 5.6, 5"/></emitter>"#,
+            r#"<scale x="1.6" y="0.9"/><rotate x="1" angle="90"/><translate x="0.2" y="1.8" z="-0.5"/></transform>
+        <emitter type="area"><rgb name="radiance" value="1.6667, 1.5556, 1.3889"/></emitter>"#,
+        )],
+        ..Version::file("../tests/crosscheck/volpath.xml")
+    };
+    let roulette = Budget {
+        factors: &[("roulette from 2", 2)],
+        ..Budget::new(6144, 416, 3)
+    };
+    check_scene("volpath", file, roulette, None);
     check_scene(
         "volpath (emitters shown)",
         Version {
             overrides: &[("hide", "false")],
             ..file
         },
-        VOLPATH,
+        Budget::new(2048, 192, 3),
         None,
     );
 }
@@ -509,7 +536,7 @@ fn bitmap() {
     check_scene(
         "bitmap",
         Version::file("../tests/crosscheck/bitmap.xml"),
-        Budget::full(1024, 96, 4),
+        Budget::new(1024, 96, 4),
         None,
     );
 }
@@ -528,7 +555,7 @@ fn rough_plastic() {
             ],
             ..Version::file("../tests/crosscheck/rough-plastic.xml")
         },
-        Budget::full(1024, 32, 8),
+        Budget::new(1024, 32, 8),
         None,
     );
 }
@@ -548,10 +575,23 @@ fn rough_glass() {
                 ("slab_alpha", "0.5"),
                 ("pane_alpha", "0.5"),
             ],
+            // The light's edges ×3, its radiance ÷ 9 (the same power).
+            replace: &[(
+                r#"<scale x="0.8" y="0.5"/><rotate x="1" angle="90"/><translate x="0.2" y="2.0" z="0"/></transform>
+        <emitter type="area"><rgb name="radiance" value="4, 3.6, 3.2"/></emitter>"#,
+                r#"<scale x="2.4" y="1.5"/><rotate x="1" angle="90"/><translate x="0.2" y="2.0" z="0"/></transform>
+        <emitter type="area"><rgb name="radiance" value="0.4444, 0.4, 0.3556"/></emitter>"#,
+            )],
             max_depth: Some(3),
             ..Version::file("../tests/crosscheck/rough-glass.xml")
         },
-        Budget::reduced(1024, 64, 4, 0.03, 0.10),
+        Budget {
+            factors: &[
+                ("nee uniform directions", 18),
+                ("light-only (nee, no mis)", 16),
+            ],
+            ..Budget::new(6400, 176, 4)
+        },
         None,
     );
 }
@@ -567,7 +607,7 @@ fn cornell_box() {
     check_scene(
         "cbox",
         LARGE_LIGHT_BOX,
-        Budget::full(8192, 384, 2),
+        Budget::new(8192, 384, 2),
         Some(Auto {
             trials: Trials {
                 no_roulette: true,
@@ -603,7 +643,7 @@ fn mesh_and_rough_gold_cornell_box() {
             file: "cbox-mesh.xml",
             ..LARGE_LIGHT_BOX
         },
-        Budget::reduced(2048, 80, 4, 0.02, 0.05),
+        Budget::new(6656, 304, 5),
         None,
     );
 }
@@ -613,7 +653,7 @@ fn furnace() {
     check_scene(
         "furnace",
         Version::file("furnace.xml"),
-        Budget::full(128, 16, 1),
+        Budget::new(128, 16, 1),
         None,
     );
 }
@@ -623,7 +663,7 @@ fn thin_lens() {
     check_scene(
         "thinlens",
         Version::file("thinlens.xml"),
-        Budget::full(3072, 80, 4),
+        Budget::new(3072, 80, 4),
         None,
     );
 }
@@ -642,13 +682,13 @@ fn soft_shadow() {
             )],
             ..Version::file("softshadow.xml")
         },
-        Budget::full(8192, 80, 32),
+        Budget::new(8192, 80, 32),
         None,
     );
 }
 
 /// Veach's scene with sphere lights of radius 0.9 to 1.2 (equal power) instead of 0.03 to
-/// 0.9, plates of roughness 0.4 to 0.1 instead of 0.25 to 0.005, and hidden emitters.
+/// 0.9, plates of roughness 0.6 to 0.3 instead of 0.25 to 0.005, and hidden emitters.
 #[test]
 fn veach_mis() {
     check_scene(
@@ -674,10 +714,10 @@ fn veach_mis() {
                 ),
                 (r#"value="8.8889""#, r#"value="0.67""#),
                 (r#"value="0.9877""#, r#"value="0.5625""#),
-                (r#""alpha" value="0.25""#, r#""alpha" value="0.4""#),
-                (r#""alpha" value="0.08""#, r#""alpha" value="0.3""#),
-                (r#""alpha" value="0.02""#, r#""alpha" value="0.2""#),
-                (r#""alpha" value="0.005""#, r#""alpha" value="0.1""#),
+                (r#""alpha" value="0.25""#, r#""alpha" value="0.6""#),
+                (r#""alpha" value="0.08""#, r#""alpha" value="0.5""#),
+                (r#""alpha" value="0.02""#, r#""alpha" value="0.4""#),
+                (r#""alpha" value="0.005""#, r#""alpha" value="0.3""#),
                 (
                     r#"<integer name="max_depth" value="3"/>"#,
                     r#"<integer name="max_depth" value="3"/><boolean name="hide_emitters" value="true"/>"#,
@@ -685,7 +725,7 @@ fn veach_mis() {
             ],
             ..Version::file("veach-mis.xml")
         },
-        Budget::reduced(3072, 80, 4, 0.05, 0.20),
+        Budget::new(53248, 960, 4),
         None,
     );
 }
@@ -708,7 +748,12 @@ fn many_lights() {
             ],
             ..Version::file("manylights.xml")
         },
-        Budget::reduced(1024, 64, 4, 0.03, 0.10),
+        // Uniform choice and BSDF sampling alone meet a light 10⁴ times brighter than most
+        // one sample in a few hundred: heavy tails.
+        Budget {
+            factors: &[("mis power uniform selection", 4), ("bsdf-only", 8)],
+            ..Budget::new(6144, 304, 4)
+        },
         None,
     );
 }
@@ -810,7 +855,7 @@ fn check_auto(
                 spp,
             )
         });
-        if let Err(failure) = check_unbiased(name, &replicates, oracle, ALPHA, budget.power) {
+        if let Err(failure) = check_unbiased(name, &replicates, oracle, ALPHA, POWER) {
             failures.push(failure);
         }
     }
@@ -833,7 +878,7 @@ fn check_auto(
         },
     );
     println!("figure: {name} / auto chose {choices:?}");
-    if let Err(failure) = check_unbiased(name, &end_to_end, oracle, ALPHA, budget.power) {
+    if let Err(failure) = check_unbiased(name, &end_to_end, oracle, ALPHA, POWER) {
         failures.push(failure);
     }
     (failures, candidates.len() + 1)
