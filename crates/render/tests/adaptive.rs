@@ -19,7 +19,7 @@
 
 mod common;
 
-use common::compare::{POWER, Replicates, check_unbiased};
+use common::compare::{Replicates, check_unbiased};
 use common::{load_file, load_version, mis_power, render_plan, scenes_dir};
 use render::adaptive::{MAX_SHARE, MIN_PILOT_SPP, MIN_SHARE, split_budget};
 use render::driver::{RenderBudget, RenderOutput};
@@ -119,7 +119,7 @@ fn check(name: &str, scene: &RenderScene, adaptive_spp: u32, oracle_spp: u32) {
         |seed| adaptive(scene, adaptive_spp, seed),
         |output| check_samples_taken(name, output, adaptive_spp),
     );
-    if let Err(failure) = check_unbiased(name, &adaptive, &oracle, ALPHA, POWER) {
+    if let Err(failure) = check_unbiased(name, &adaptive, &oracle, ALPHA) {
         panic!("{failure}");
     }
 }

@@ -24,7 +24,7 @@
 
 mod common;
 
-use common::compare::{POWER, Replicates, check_unbiased};
+use common::compare::{Replicates, check_unbiased};
 use common::{configurations_with, load_xml, mis_power};
 use glam::{DVec3, Vec2};
 use render::plan::{RenderPlan, Transport};
@@ -222,7 +222,7 @@ fn exact_image(scene: &RenderScene, case: &Case) -> Vec<DVec3> {
 /// One configuration: label, transport, sampler, samples per pixel.
 type Config = (String, Transport, SamplerKind, u32);
 
-/// Checks `case` with `configurations`, each of which must see the biases [`POWER`].
+/// Checks `case` with `configurations`, each of which must see the biases `common::compare::POWER`.
 fn check_case(case: &Case, configurations: &[Config]) {
     assert!(configurations.len() <= MAX_COMPARISONS);
     let dir = tempfile::tempdir().expect("temporary folder");
@@ -234,7 +234,7 @@ fn check_case(case: &Case, configurations: &[Config]) {
         let replicates = Replicates::render(&scene, label, seeds, *spp, |seed| {
             RenderPlan::fixed_spp(*transport, *sampler, seed, *spp)
         });
-        if let Err(failure) = check_unbiased(case.name, &replicates, &exact, ALPHA, POWER) {
+        if let Err(failure) = check_unbiased(case.name, &replicates, &exact, ALPHA) {
             failures.push(failure);
         }
     }

@@ -29,7 +29,7 @@
 //!
 //! **Power.** Each comparison is repeated on the configuration's image × (1 + bias) and on it
 //! with a typical 4 × 4 block × (1 + bias), and must reject both (see `common::compare`): 0.5%
-//! of the image and 5% of a block ([`POWER`]), on every scene. The budgets ([`Budget`]) were
+//! of the image and 5% of a block (`common::compare::POWER`), on every scene. The budgets ([`Budget`]) were
 //! chosen from the standard errors measured on each scene, so that each bias is about 6
 //! standard errors or more of the image test and 7.3 of the block test, where the thresholds
 //! are about 4.3 and 5.5 (Student's t at these levels with 30–60 degrees of freedom); a run
@@ -50,7 +50,7 @@
 
 mod common;
 
-use common::compare::{POWER, Replicates, check_unbiased, compare};
+use common::compare::{Replicates, check_unbiased, compare};
 use common::{Configuration, configurations_with, load_version, mis_power, scenes_dir};
 use integrators::{LightSelection, LightTracer, Mis, PathReuse, PathSettings};
 use render::auto::{REUSE_BLOCK, RIS_CANDIDATES, Trials};
@@ -144,19 +144,7 @@ impl Budget {
             factors: &[],
         }
     }
-}
 
-/// What `auto` is tested with on a scene (see [`check_auto`]).
-#[derive(Clone, Copy)]
-struct Auto {
-    /// The trials its plan must make on the scene.
-    trials: Trials,
-    /// Samples per pixel of each end-to-end replicate (the technique pilot runs only where it
-    /// takes at most a tenth of them).
-    spp: u32,
-}
-
-impl Budget {
     /// Samples per pixel of each replicate of `configuration`: [`Budget::factors`]' multiple
     /// of `config` where it names the configuration, else `heavy_factor`'s where the estimator
     /// is poor on most scenes (without MIS, or with the independent sampler), else `config`.
@@ -170,6 +158,16 @@ impl Budget {
             .map_or(if heavy { self.heavy_factor } else { 1 }, |&(_, f)| f);
         self.config * factor
     }
+}
+
+/// What `auto` is tested with on a scene (see [`check_auto`]).
+#[derive(Clone, Copy)]
+struct Auto {
+    /// The trials its plan must make on the scene.
+    trials: Trials,
+    /// Samples per pixel of each end-to-end replicate (the technique pilot runs only where it
+    /// takes at most a tenth of them).
+    spp: u32,
 }
 
 /// The oracle's replicates.
@@ -233,7 +231,7 @@ fn check_scene(name: &str, version: Version, budget: Budget, auto: Option<Auto>)
             RenderPlan::fixed_spp(Transport::Path(settings), sampler, seed, spp)
         });
         comparisons += 1;
-        if let Err(failure) = check_unbiased(name, &replicates, &oracle, ALPHA, POWER) {
+        if let Err(failure) = check_unbiased(name, &replicates, &oracle, ALPHA) {
             failures.push(failure);
         }
         rendered.push(replicates);
@@ -244,6 +242,7 @@ fn check_scene(name: &str, version: Version, budget: Budget, auto: Option<Auto>)
             .find(|r| r.label == label)
             .unwrap_or_else(|| panic!("{label} was rendered"))
     };
+    // A factor whose label names no rendered configuration (a typo) fails here.
     for (label, _) in budget.factors {
         find(label);
     }
@@ -499,7 +498,6 @@ fn textured_blends() {
 /// Mitsuba's `volpath` on surfaces, where passes through null lobes (an invisible card, a
 /// thin pane, a mask, a glowing null sphere) are not path vertices, at `max_depth` 3 with and
 /// without hidden emitters, from the Mitsuba crosscheck scenes.
-
 #[test]
 fn volpath_null_vertices() {
     let file = Version {
@@ -512,11 +510,11 @@ fn volpath_null_vertices() {
         )],
         ..Version::file("../tests/crosscheck/volpath.xml")
     };
-    let roulette = Budget {
+    let hidden = Budget {
         factors: &[("roulette from 2", 2)],
         ..Budget::new(6144, 416, 3)
     };
-    check_scene("volpath", file, roulette, None);
+    check_scene("volpath", file, hidden, None);
     check_scene(
         "volpath (emitters shown)",
         Version {
@@ -855,7 +853,7 @@ fn check_auto(
                 spp,
             )
         });
-        if let Err(failure) = check_unbiased(name, &replicates, oracle, ALPHA, POWER) {
+        if let Err(failure) = check_unbiased(name, &replicates, oracle, ALPHA) {
             failures.push(failure);
         }
     }
@@ -878,7 +876,7 @@ fn check_auto(
         },
     );
     println!("figure: {name} / auto chose {choices:?}");
-    if let Err(failure) = check_unbiased(name, &end_to_end, oracle, ALPHA, POWER) {
+    if let Err(failure) = check_unbiased(name, &end_to_end, oracle, ALPHA) {
         failures.push(failure);
     }
     (failures, candidates.len() + 1)

@@ -24,7 +24,7 @@
 //! [`check_unbiased`] also runs the comparison on two biased copies of the configuration, which
 //! it must reject: the whole-image test must reject the image × (1 + [`Power::image`]), and the
 //! block test a typical block ([`median_block`]) × (1 + [`Power::block`]) ([`POWER`]: 0.5% and
-//! 5%, unless a test declares larger biases where its oracle cannot converge in a test's time). A biased copy scales
+//! 5%, for every comparison of every test). A biased copy scales
 //! the replicates' pixel values, so its difference from the unbiased comparison is exact and its
 //! rejection shows the test's power on this scene's noise. (Blocks that neither renderer varies,
 //! a sky or a light seen directly, would reject any scaling whatever the power: so the power is
@@ -478,9 +478,9 @@ pub fn median_block(a: &Replicates, b: &Replicates) -> UVec2 {
 }
 
 /// Checks that `config` agrees with `oracle` on `scene` at the family-wise level `alpha`, and
-/// that the test has the power to see two biases of `config`: the whole-image test must reject
-/// the image × (1 + `power.image`), and the block test must reject the typical block
-/// ([`median_block`]) × (1 + `power.block`). Prints one figure line per comparison; the error
+/// that the test has the power to see two biases of `config` ([`POWER`]): the whole-image test
+/// must reject the image × (1 + [`Power::image`]), and the block test must reject the typical
+/// block ([`median_block`]) × (1 + [`Power::block`]). Prints one figure line per comparison; the error
 /// names the scene, both replicate sets (seeds, spp, size) and the worst unit of each level, to
 /// replay it.
 pub fn check_unbiased(
@@ -488,9 +488,8 @@ pub fn check_unbiased(
     config: &Replicates,
     oracle: &Replicates,
     alpha: f64,
-    power: Power,
 ) -> Result<(), String> {
-    let (image_bias, block_bias) = (power.image, power.block);
+    let (image_bias, block_bias) = (POWER.image, POWER.block);
     let replay = format!("{scene}: {}; oracle {}", config.replay(), oracle.replay());
     let mut problems = Vec::new();
     let outcome = compare(config, oracle, alpha);
