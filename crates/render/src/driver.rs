@@ -581,7 +581,7 @@ where
                                     .and_then(|a| a.per_round(pixel))
                                     .unwrap_or(1);
                                 let scale = 1.0 / per_round as f32;
-                                splatter.splat(position, pixel, |target, weight, _| {
+                                splatter.splat(position, pixel, |target, weight| {
                                     let at = target - origin;
                                     filtered[at.y as usize * row + at.x as usize]
                                         .add_weighted(value, weight * scale);

@@ -151,10 +151,10 @@ pub struct FilteredSum {
 
 impl FilteredSum {
     /// Adds one sample `value` (radiance) with weight `weight` here, from a pixel whose
-    /// samples have here the mean weight `expected` (see [`crate::filter::Splatter::splat`]):
-    /// [`Self::add_weighted`] and [`Self::add_expected`] for one sample.
-    #[inline]
-    pub fn add(&mut self, value: Vec3, weight: f32, expected: f64) {
+    /// samples have here the mean weight `expected`: [`Self::add_weighted`] and
+    /// [`Self::add_expected`] for one sample (the render adds the two apart).
+    #[cfg(test)]
+    pub(crate) fn add(&mut self, value: Vec3, weight: f32, expected: f64) {
         self.add_weighted(value, weight);
         self.add_expected(1, expected);
     }

@@ -49,7 +49,6 @@ pub(super) fn sample_each(
         if let Some(sample) = evaluate(light, 1.0, surface, wo, u_point) {
             visit(ChosenLight {
                 weight: 1.0 / sample.sample.pdf_solid_angle,
-                pdf_for_mis: sample.sample.pdf_solid_angle,
                 ..sample
             });
         }

@@ -94,7 +94,7 @@ impl AxisWeights {
         }
     }
 
-    /// Writes the targets of a position `x` in source pixel `q` to `weights` and `expected`
+    /// Writes the weights of a position `x` in source pixel `q` for its targets to `weights`
     /// (from target `first` on) and returns `(first, count)`.
     #[inline]
     fn targets(
@@ -103,17 +103,13 @@ impl AxisWeights {
         x: f32,
         q: u32,
         weights: &mut [f32; MAX_SPAN],
-        expected: &mut [f64; MAX_SPAN],
     ) -> (u32, usize) {
         let first = q.saturating_sub(self.reach);
         let last = (q + self.reach).min(self.size - 1);
-        let span = 2 * self.reach as usize + 1;
-        let row = &self.expected[q as usize * span..(q as usize + 1) * span];
         let mut count = 0;
         for p in first..=last {
             let offset = x - (p as f32 + 0.5);
             weights[count] = filter.signed_pdf_1d(offset) * self.inv_mass[p as usize];
-            expected[count] = row[(p + self.reach - q) as usize];
             count += 1;
         }
         (first, count)
@@ -156,39 +152,33 @@ impl Splatter {
         UVec2::new(self.columns.size, self.rows.size)
     }
 
-    /// Calls `visit(pixel, weight, expected)` for every pixel a camera sample of `source` at the
-    /// film position `film` (pixels, inside `source`) counts towards: `weight` is
-    /// [`Filter::pixel_weight`] (per square pixel, up to rounding), `expected` the mean of
-    /// that weight over positions uniform in `source`, `W(source → pixel)` of the module
-    /// documentation. Every pixel within [`Self::reach`] of `source` inside the image is
-    /// visited, even where `weight` is zero (its `expected` still counts). Row by row, left to
-    /// right.
+    /// Calls `visit(pixel, weight)` for every pixel a camera sample of `source` at the film
+    /// position `film` (pixels, inside `source`) counts towards: `weight` is
+    /// [`Filter::pixel_weight`] (per square pixel, up to rounding). Every pixel within
+    /// [`Self::reach`] of `source` inside the image is visited, even where `weight` is zero.
+    /// Row by row, left to right. The sample's expected weights, which depend only on `source`,
+    /// are [`Self::for_each_expected`]'s.
     #[inline]
-    pub fn splat(&self, film: Vec2, source: UVec2, mut visit: impl FnMut(UVec2, f32, f64)) {
+    pub fn splat(&self, film: Vec2, source: UVec2, mut visit: impl FnMut(UVec2, f32)) {
         let mut wx = [0.0; MAX_SPAN];
-        let mut ex = [0.0; MAX_SPAN];
         let mut wy = [0.0; MAX_SPAN];
-        let mut ey = [0.0; MAX_SPAN];
         let (x0, nx) = self
             .columns
-            .targets(&self.filter, film.x, source.x, &mut wx, &mut ex);
-        let (y0, ny) = self
-            .rows
-            .targets(&self.filter, film.y, source.y, &mut wy, &mut ey);
-        for j in 0..ny {
-            for i in 0..nx {
+            .targets(&self.filter, film.x, source.x, &mut wx);
+        let (y0, ny) = self.rows.targets(&self.filter, film.y, source.y, &mut wy);
+        for (j, &weight_y) in wy[..ny].iter().enumerate() {
+            for (i, &weight_x) in wx[..nx].iter().enumerate() {
                 visit(
                     UVec2::new(x0 + i as u32, y0 + j as u32),
-                    wx[i] * wy[j],
-                    ex[i] * ey[j],
+                    weight_x * weight_y,
                 );
             }
         }
     }
 
     /// Calls `visit(pixel, expected)` for every pixel within [`Self::reach`] of `source` inside
-    /// the image, with the mean weight there of a position uniform in `source` (`expected` of
-    /// [`Self::splat`]). Row by row, left to right.
+    /// the image, with the mean weight there of a position uniform in `source`
+    /// (`W(source → pixel)` of the module documentation). Row by row, left to right.
     pub fn for_each_expected(&self, source: UVec2, mut visit: impl FnMut(UVec2, f64)) {
         let (columns, rows) = (&self.columns, &self.rows);
         let span = |axis: &AxisWeights, q: u32| {
