@@ -1,4 +1,4 @@
-//! Rendering throughput on the scene suite: the BVH build of every scene, closest-hit and
+//! Rendering throughput on the scene suite, and of splatting camera samples: the BVH build of every scene, closest-hit and
 //! occlusion throughput (rays per second) on the rays a 1-spp render of each scene traces, and
 //! samples per second of every integrator preset on the Cornell box, and on two threads the
 //! Cornell box with and without adaptive sampling (whose uneven per-pixel sample counts test how
@@ -15,7 +15,10 @@ use std::time::Duration;
 
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use geometry::Accel;
+use glam::{UVec2, Vec2, Vec3};
 use render::driver::RenderOptions;
+use render::film::SplatSum;
+use render::filter::{Filter, Splatter};
 use render::plan::plan_from_flags;
 use render::session::{film_filter, render_scene, render_scene_recording};
 use sampling::SamplerKind;
@@ -149,6 +152,54 @@ fn samples(c: &mut Criterion) {
     group.finish();
 }
 
+/// Camera samples splatted per second, the film's share of each sample's cost: a sample's
+/// weights for every pixel that Mitsuba's default gaussian (and a Mitchell filter, with negative
+/// lobes) reaches, added to a 64 × 64 region's [`SplatSum`]s, at positions spread over the
+/// region by a fixed sequence.
+fn splat(c: &mut Criterion) {
+    const SIZE: u32 = 64;
+    const SAMPLES: u32 = 4096;
+    let mut group = c.benchmark_group("splat");
+    group
+        .sample_size(20)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(2));
+    group.throughput(Throughput::Elements(u64::from(SAMPLES)));
+    let filters = [
+        ("gaussian", Filter::gaussian(0.5).expect("a gaussian")),
+        (
+            "mitchell",
+            Filter::mitchell(1.0 / 3.0, 1.0 / 3.0).expect("a Mitchell filter"),
+        ),
+    ];
+    for (name, filter) in filters {
+        let splatter = Splatter::new(&filter, SIZE, SIZE).expect("a filter wider than a pixel");
+        // A low-discrepancy walk over the region: golden-ratio steps on both axes.
+        let positions: Vec<(Vec2, UVec2)> = (0..SAMPLES)
+            .map(|i| {
+                let u = Vec2::new(
+                    (i as f32 * 0.618_034).fract(),
+                    (i as f32 * 0.754_877_7).fract(),
+                ) * SIZE as f32;
+                (u, u.as_uvec2())
+            })
+            .collect();
+        let value = Vec3::new(0.3, 0.5, 0.7);
+        let mut sums = vec![SplatSum::default(); (SIZE * SIZE) as usize];
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                for &(film, pixel) in &positions {
+                    splatter.splat(film, pixel, |target, weight| {
+                        sums[(target.y * SIZE + target.x) as usize].add_weighted(value, weight);
+                    });
+                }
+                black_box(&mut sums);
+            })
+        });
+    }
+    group.finish();
+}
+
 /// Samples per second on two threads, the Cornell box at its own 128 × 128 and 32 spp, with
 /// `auto` and the Sobol sampler, with and without adaptive sampling: with the same samples traced
 /// (the pilot's included), the two differ by how well the threads share each pass's tiles.
@@ -184,5 +235,5 @@ fn two_threads(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, scene_bvh, samples, two_threads);
+criterion_group!(benches, scene_bvh, samples, splat, two_threads);
 criterion_main!(benches);

@@ -63,6 +63,11 @@ impl GaussianFilter {
     pub fn sample_1d(&self, u: f32) -> f32 {
         self.table.sample(u)
     }
+
+    /// The table the filter is sampled from.
+    pub(super) fn table(&self) -> &FilterTable {
+        &self.table
+    }
 }
 
 impl Default for GaussianFilter {

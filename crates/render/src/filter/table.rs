@@ -66,6 +66,12 @@ impl FilterTable {
         self.negative_lobes
     }
 
+    /// The signed density [`Self::signed_pdf`] at the nodes `−radius + i · 2 radius / (n − 1)`
+    /// (per pixel), `n` of them: the table that [`Self::signed_pdf`] interpolates linearly.
+    pub(super) fn signed_pdf_at_nodes(&self) -> Vec<f32> {
+        self.values.iter().map(|v| v / self.total).collect()
+    }
+
     /// Node spacing in pixels.
     fn spacing(&self) -> f32 {
         2.0 * self.radius / self.segments as f32
