@@ -91,7 +91,7 @@ impl SignedDensity {
         if !(position > 0.0 && position < self.segments) {
             return 0.0;
         }
-        let i = (position as usize).min(self.nodes.len() - 2);
+        let i = (position as u32 as usize).min(self.nodes.len() - 2);
         let s = position - i as f32;
         let (f0, f1) = (self.nodes[i], self.nodes[i + 1]);
         f0 + (f1 - f0) * s
@@ -156,8 +156,18 @@ impl AxisWeights {
         q: u32,
         weights: &mut [f32; MAX_SPAN],
     ) -> (u32, usize) {
-        let first = q.saturating_sub(self.reach);
-        let last = (q + self.reach).min(self.size - 1);
+        // Only the pixels whose centres lie inside the filter's open support, `p + 0.5` in
+        // `(x − radius, x + radius)`: as many each time (4 of the 5 within reach for a
+        // gaussian of radius 2) unless a centre lies on the support's edge, so the splat loops
+        // run a fixed number of times where a test for zero weights would be mispredicted. The
+        // pixels left out have weight zero. Floors by truncating positive numbers, relative to
+        // pixel `q − reach − 1` (`f32::floor` is a library call on baseline x86-64).
+        let base = i64::from(q) - i64::from(self.reach) - 1;
+        let relative = x - base as f32 - 0.5;
+        let first = (base + (relative - density.radius) as i64 + 1)
+            .max(i64::from(q.saturating_sub(self.reach))) as u32;
+        let last = (base + (relative + density.radius) as i64)
+            .min(i64::from((q + self.reach).min(self.size - 1))) as u32;
         let mut count = 0;
         for p in first..=last {
             let offset = x - (p as f32 + 0.5);
@@ -290,5 +300,48 @@ mod tests {
             }
         }
         assert!(SignedDensity::new(&Filter::Box).is_none());
+    }
+
+    #[test]
+    fn a_splat_reaches_every_pixel_of_nonzero_weight_with_that_weight() {
+        // Against Filter::pixel_weight at every pixel of a 7 × 6 image, for positions spread
+        // over all its pixels (edges and corners included) and on pixel edges.
+        let (width, height) = (7, 6);
+        for filter in [
+            Filter::tent(1.0).unwrap(),
+            Filter::gaussian(0.5).unwrap(),
+            Filter::gaussian(0.3).unwrap(),
+            Filter::mitchell(1.0 / 3.0, 1.0 / 3.0).unwrap(),
+            Filter::lanczos(3).unwrap(),
+        ] {
+            let splatter = Splatter::new(&filter, width, height).unwrap();
+            let peak = filter.pixel_weight(Vec2::splat(3.5), UVec2::splat(3), width, height);
+            for k in 0..2000u32 {
+                let u = Vec2::new(
+                    ((k as f32 * 0.618_034).fract() * 8.0).floor() / 8.0,
+                    (k as f32 * 0.754_877_7).fract(),
+                );
+                let source = UVec2::new(k % width, (k / width) % height);
+                let film = Splatter::film_position(source, u);
+                let mut splat = vec![0.0; (width * height) as usize];
+                let mut visits = 0;
+                splatter.splat(film, source, |pixel, weight| {
+                    splat[(pixel.y * width + pixel.x) as usize] += weight;
+                    visits += 1;
+                });
+                assert!(visits <= (2 * splatter.reach() + 1).pow(2));
+                for y in 0..height {
+                    for x in 0..width {
+                        let pixel = UVec2::new(x, y);
+                        let expected = filter.pixel_weight(film, pixel, width, height);
+                        let ours = splat[(y * width + x) as usize];
+                        assert!(
+                            (ours - expected).abs() <= 1e-5 * peak.abs(),
+                            "{filter:?}: sample of {source} at {film} in {pixel}: {ours} against {expected}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }
