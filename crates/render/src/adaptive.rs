@@ -130,8 +130,25 @@ pub fn split_budget(budget: &RenderBudget) -> Option<(RenderBudget, RenderBudget
 pub struct Allocation {
     width: u32,
     shares: Vec<f32>,
-    /// Per pixel, samples per round (`k_i`); empty unless in whole rounds.
-    per_round: Vec<u32>,
+    /// Samples per round per pixel, when in whole rounds.
+    rounds: Option<Rounds>,
+}
+
+/// An allocation's whole rounds: samples per round (`k_i`) per pixel and their mean `k̄`, kept
+/// since every pixel's count in every pass needs it.
+#[derive(Clone, Debug, PartialEq)]
+struct Rounds {
+    per_pixel: Vec<u32>,
+    mean: f64,
+}
+
+impl Rounds {
+    /// Rounds done at a mean of `mean_spp` samples per pixel.
+    fn done_at(&self, mean_spp: u32) -> u32 {
+        (f64::from(mean_spp) / self.mean)
+            .round()
+            .min(f64::from(u32::MAX)) as u32
+    }
 }
 
 /// Samples per round of a pixel whose share is 1, in an allocation in whole rounds.
@@ -166,7 +183,7 @@ impl Allocation {
         Self {
             width: pilot.width(),
             shares: normalised_shares(&wanted),
-            per_round: Vec::new(),
+            rounds: None,
         }
     }
 
@@ -176,27 +193,22 @@ impl Allocation {
     /// `k̄ / 2` of `v`). Pixels with equal shares (a block's, [`Self::blockwise`]) keep equal
     /// counts.
     pub fn in_rounds(mut self) -> Self {
-        self.per_round = self
+        let per_pixel: Vec<u32> = self
             .shares
             .iter()
             .map(|&s| ((f64::from(s) * f64::from(SAMPLES_PER_ROUND)).round() as u32).max(1))
             .collect();
+        let total: u64 = per_pixel.iter().map(|&k| u64::from(k)).sum();
+        let mean = total as f64 / per_pixel.len().max(1) as f64;
+        self.rounds = Some(Rounds { per_pixel, mean });
         self
     }
 
     /// Samples per round of `pixel` when the allocation is in whole rounds
     /// ([`Self::in_rounds`]), else `None`.
     pub fn per_round(&self, pixel: UVec2) -> Option<u32> {
-        self.per_round.get(self.index(pixel)).copied()
-    }
-
-    /// Rounds done at a mean of `mean_spp` samples per pixel, for an allocation in rounds.
-    fn rounds(&self, mean_spp: u32) -> u32 {
-        let total: u64 = self.per_round.iter().map(|&k| u64::from(k)).sum();
-        let mean = total as f64 / self.per_round.len().max(1) as f64;
-        (f64::from(mean_spp) / mean)
-            .round()
-            .min(f64::from(u32::MAX)) as u32
+        let rounds = self.rounds.as_ref()?;
+        rounds.per_pixel.get(self.index(pixel)).copied()
     }
 
     /// The same allocation with every `block × block` block of pixels (aligned to the image, cut
@@ -241,8 +253,9 @@ impl Allocation {
         if mean_spp == 0 {
             return 0;
         }
-        if let Some(per_round) = self.per_round(pixel) {
-            return per_round.saturating_mul(self.rounds(mean_spp));
+        if let Some(rounds) = &self.rounds {
+            let per_round = rounds.per_pixel[self.index(pixel)];
+            return per_round.saturating_mul(rounds.done_at(mean_spp));
         }
         let wanted = (f64::from(self.share(pixel)) * f64::from(mean_spp)).round();
         wanted.clamp(1.0, f64::from(u32::MAX)) as u32
@@ -302,7 +315,7 @@ mod tests {
         Allocation {
             width,
             shares: vec![1.0; width as usize * height as usize],
-            per_round: Vec::new(),
+            rounds: None,
         }
     }
 
@@ -311,7 +324,7 @@ mod tests {
         let allocation = Allocation {
             width: 4,
             shares: vec![0.25, 0.5, 1.0, 2.25],
-            per_round: Vec::new(),
+            rounds: None,
         }
         .in_rounds();
         let pixels: Vec<UVec2> = (0..4).map(|x| UVec2::new(x, 0)).collect();
@@ -377,7 +390,7 @@ mod tests {
             shares: (0..width * height)
                 .map(|i| 0.25 + (i % 7) as f32 * 0.3)
                 .collect(),
-            per_round: Vec::new(),
+            rounds: None,
         };
         let total: f32 = allocation.shares.iter().sum();
         let blocked = allocation.clone().blockwise(4);
@@ -465,7 +478,7 @@ mod tests {
         let allocation = Allocation {
             width: 2,
             shares: vec![0.25, 1.75],
-            per_round: Vec::new(),
+            rounds: None,
         };
         let (low, high) = (UVec2::new(0, 0), UVec2::new(1, 0));
         assert_eq!(allocation.samples(low, 0), 0);
