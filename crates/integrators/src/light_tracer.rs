@@ -40,6 +40,7 @@ use crate::optional_draw::next_1d_if;
 use crate::{PathSettings, RussianRoulette};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
+use materials::BsdfFlags;
 use sampling::Sampler;
 use sampling::distribution::CdfTable;
 use world::{BsdfSlot, CameraConnection, CameraTraits, RayTally, SurfaceHit, World};
@@ -149,12 +150,22 @@ impl LightTracer {
             if vertex + 1 >= self.max_depth {
                 return;
             }
+            // Light that leaves the first vertex by a non-delta lobe is the path tracer's, so a
+            // surface without delta (or null) lobes ends the path here, before drawing a bounce.
+            if vertex == 1
+                && !surface
+                    .bsdf
+                    .flags()
+                    .intersects(BsdfFlags::DELTA | BsdfFlags::NULL)
+            {
+                return;
+            }
             let u_lobe = next_1d_if(sampler, self.draws_lobe_choice);
             let u_bounce = sampler.next_2d();
             let Some(bounce) = surface.bsdf.sample(wo, u_lobe, u_bounce) else {
                 return;
             };
-            // Light that leaves the first vertex by a non-delta lobe is the path tracer's.
+            // Likewise a non-delta bounce from a surface with both kinds of lobe.
             if vertex == 1 && !bounce.is_delta {
                 return;
             }
