@@ -93,7 +93,7 @@ impl SignedDensity {
         }
         let i = (position as u32 as usize).min(self.nodes.len() - 2);
         let s = position - i as f32;
-        let (f0, f1) = (self.nodes[i], self.nodes[i + 1]);
+        let [f0, f1] = [self.nodes[i], self.nodes[i + 1]];
         f0 + (f1 - f0) * s
     }
 }
@@ -168,13 +168,15 @@ impl AxisWeights {
             .max(i64::from(q.saturating_sub(self.reach))) as u32;
         let last = (base + (relative + density.radius) as i64)
             .min(i64::from((q + self.reach).min(self.size - 1))) as u32;
-        let mut count = 0;
-        for p in first..=last {
+        let masses = self
+            .inv_mass
+            .get(first as usize..=last as usize)
+            .unwrap_or(&[]);
+        for ((weight, &inv_mass), p) in weights.iter_mut().zip(masses).zip(first..) {
             let offset = x - (p as f32 + 0.5);
-            weights[count] = density.at(offset) * self.inv_mass[p as usize];
-            count += 1;
+            *weight = density.at(offset) * inv_mass;
         }
-        (first, count)
+        (first, masses.len())
     }
 }
 
