@@ -189,8 +189,12 @@ fn splat(c: &mut Criterion) {
         group.bench_function(name, |b| {
             b.iter(|| {
                 for &(film, pixel) in &positions {
-                    splatter.splat(film, pixel, |target, weight| {
-                        sums[(target.y * SIZE + target.x) as usize].add_weighted(value, weight);
+                    splatter.splat(film, pixel, |first, weight_y, weights_x| {
+                        let start = (first.y * SIZE + first.x) as usize;
+                        let row_value = value * weight_y;
+                        for (sum, &weight_x) in sums[start..].iter_mut().zip(weights_x) {
+                            sum.add_weighted(row_value, weight_x);
+                        }
                     });
                 }
                 black_box(&mut sums);

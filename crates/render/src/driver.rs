@@ -581,10 +581,14 @@ where
                                     .and_then(|a| a.per_round(pixel))
                                     .unwrap_or(1);
                                 let scale = 1.0 / per_round as f32;
-                                splatter.splat(position, pixel, |target, weight| {
-                                    let at = target - origin;
-                                    filtered[at.y as usize * row + at.x as usize]
-                                        .add_weighted(value, weight * scale);
+                                splatter.splat(position, pixel, |first, weight_y, weights_x| {
+                                    let at = first - origin;
+                                    let start = at.y as usize * row + at.x as usize;
+                                    let row_value = value * (weight_y * scale);
+                                    let sums = &mut filtered[start..start + weights_x.len()];
+                                    for (sum, &weight_x) in sums.iter_mut().zip(weights_x) {
+                                        sum.add_weighted(row_value, weight_x);
+                                    }
                                 });
                             }
                         } else {

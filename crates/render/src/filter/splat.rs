@@ -218,27 +218,25 @@ impl Splatter {
         UVec2::new(self.columns.size, self.rows.size)
     }
 
-    /// Calls `visit(pixel, weight)` for every pixel a camera sample of `source` at the film
-    /// position `film` (pixels, inside `source`) counts towards: `weight` is
-    /// [`Filter::pixel_weight`] (per square pixel, up to rounding). Every pixel within
-    /// [`Self::reach`] of `source` inside the image is visited, even where `weight` is zero.
-    /// Row by row, left to right. The sample's expected weights, which depend only on `source`,
+    /// Calls `visit(first, weight_y, weights_x)` for every row of pixels that a camera sample of
+    /// `source` at the film position `film` (pixels, inside `source`) counts towards, top row
+    /// first: the row's pixels are `first + (i, 0)` for each `i` of `weights_x`, and pixel
+    /// `first + (i, 0)` takes the weight `weights_x[i] · weight_y`, which is
+    /// [`Filter::pixel_weight`] (per square pixel, up to rounding). The pixels are those inside
+    /// the image whose centres lie inside the filter's support around `film`; all others have
+    /// weight zero. Rows rather than pixels, so that a caller finds a row's sums once and the
+    /// weight of the row once. The sample's expected weights, which depend only on `source`,
     /// are [`Self::for_each_expected`]'s.
     #[inline]
-    pub fn splat(&self, film: Vec2, source: UVec2, mut visit: impl FnMut(UVec2, f32)) {
+    pub fn splat(&self, film: Vec2, source: UVec2, mut visit: impl FnMut(UVec2, f32, &[f32])) {
         let mut wx = [0.0; MAX_SPAN];
         let mut wy = [0.0; MAX_SPAN];
         let (x0, nx) = self
             .columns
             .targets(&self.density, film.x, source.x, &mut wx);
         let (y0, ny) = self.rows.targets(&self.density, film.y, source.y, &mut wy);
-        for (j, &weight_y) in wy[..ny].iter().enumerate() {
-            for (i, &weight_x) in wx[..nx].iter().enumerate() {
-                visit(
-                    UVec2::new(x0 + i as u32, y0 + j as u32),
-                    weight_x * weight_y,
-                );
-            }
+        for (y, &weight_y) in (y0..).zip(&wy[..ny]) {
+            visit(UVec2::new(x0, y), weight_y, &wx[..nx]);
         }
     }
 
@@ -327,9 +325,11 @@ mod tests {
                 let film = Splatter::film_position(source, u);
                 let mut splat = vec![0.0; (width * height) as usize];
                 let mut visits = 0;
-                splatter.splat(film, source, |pixel, weight| {
-                    splat[(pixel.y * width + pixel.x) as usize] += weight;
-                    visits += 1;
+                splatter.splat(film, source, |first, weight_y, weights_x| {
+                    for (x, &weight_x) in (first.x..).zip(weights_x) {
+                        splat[(first.y * width + x) as usize] += weight_x * weight_y;
+                        visits += 1;
+                    }
                 });
                 assert!(visits <= (2 * splatter.reach() + 1).pow(2));
                 for y in 0..height {
