@@ -54,23 +54,34 @@ pub fn raycast_limit(root: &Path, args: &[String]) -> Result<bool, String> {
     let plan = plan_from_flags(&scene, &["--spp", &spp_flag, "--seed", "1"])?;
     let filter = film_filter(scene.desc.film.filter).map_err(|e| e.to_string())?;
     let options = RenderOptions::quiet();
+    // `auto`'s technique pilot is left out of both sides: its rays are not recorded (they
+    // belong to throwaway renders), so the render's time and rays here are the image's alone.
     let render_once = |threads: usize| -> Result<(f64, RayCounters), String> {
         let (output, counters) = pool(threads)?
             .install(|| render_scene(&scene, &plan, &filter, &options))
             .map_err(|e| e.to_string())?;
-        Ok((output.seconds, counters))
+        let (pilot_seconds, pilot_rays) = output
+            .auto
+            .as_ref()
+            .map_or((0.0, RayCounters::default()), |a| (a.seconds, a.rays));
+        let image_rays = RayCounters {
+            rays: counters.rays - pilot_rays.rays,
+            shadow_rays: counters.shadow_rays - pilot_rays.shadow_rays,
+        };
+        Ok((output.seconds - pilot_seconds, image_rays))
     };
 
+    let (recorded, log) = pool(threads)?
+        .install(|| render_scene_recording(&scene, &plan, &filter, &options))
+        .map_err(|e| e.to_string())?;
     println!(
         "{}: {}x{} at {spp} spp, techniques {:?}, {threads} threads, medians of {runs} runs",
         path.display(),
         scene.desc.film.width,
         scene.desc.film.height,
-        plan.transport.technique_names(),
+        recorded.rendered_plan(&plan).transport.technique_names(),
     );
-    let (_, log) = pool(threads)?
-        .install(|| render_scene_recording(&scene, &plan, &filter, &options))
-        .map_err(|e| e.to_string())?;
+
     // Rendering and tracing alternate, so that a change in the machine's load hits both alike.
     let tracing = pool(threads)?;
     let mut render_times = Vec::new();
