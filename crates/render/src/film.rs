@@ -231,6 +231,11 @@ impl FilteredSum {
 /// steps, so 2¹² of them cannot overflow.
 const MAX_PENDING_TERMS: u32 = 1 << 12;
 
+/// The magnitude below which a weighted sample's six terms (value and square per channel) are
+/// all below 2⁵¹ steps of [`EXACT_FRACTION_BITS`], so fit [`SplatSum`]'s pending sums: just
+/// under `√8`, since `(√8)² · 2⁴⁸ = 2⁵¹`.
+const PENDING_MAGNITUDE: f32 = 2.828;
+
 /// A tile's running [`FilteredSum::add_weighted`] for one pixel during a pass, the hot loop of
 /// splatting (25 targets per sample with Mitsuba's gaussian): the six terms of a sample (its
 /// weighted value and square per channel) are rounded together and added to `i64` sums, which
@@ -256,13 +261,16 @@ impl SplatSum {
         if weight == 0.0 {
             return;
         }
-        let v = (value * weight).as_dvec3();
-        let scale = 2f64.powi(EXACT_FRACTION_BITS);
-        let terms = [v.x, v.y, v.z, v.x * v.x, v.y * v.y, v.z * v.z].map(|t| t * scale);
-        // One test of magnitude for all six terms; then each is rounded by the bias, and its
-        // integer read off the bits: `x + bias` has unit spacing, so its bits less the bias's
-        // are `x` rounded to the nearest integer, ties to even: the bits of `ExactSum::add`.
-        if terms.iter().all(|t| t.abs() < 2f64.powi(51)) {
+        let weighted = value * weight;
+        // One test of magnitude for all six terms, on the three channels: below `√8` a value
+        // and its square are both below 2⁵¹ steps. Then each term is rounded by the bias, and
+        // its integer read off the bits: `x + bias` has unit spacing, so its bits less the
+        // bias's are `x` rounded to the nearest integer, ties to even: the bits of
+        // `ExactSum::add`.
+        if weighted.abs().max_element() < PENDING_MAGNITUDE {
+            let v = weighted.as_dvec3();
+            let scale = 2f64.powi(EXACT_FRACTION_BITS);
+            let terms = [v.x, v.y, v.z, v.x * v.x, v.y * v.y, v.z * v.z].map(|t| t * scale);
             for (sum, t) in self.pending.iter_mut().zip(terms) {
                 *sum += (t + ROUNDING_BIAS).to_bits() as i64 - ROUNDING_BIAS.to_bits() as i64;
             }
@@ -271,7 +279,7 @@ impl SplatSum {
                 self.flush();
             }
         } else {
-            self.add_large(v);
+            self.add_large(weighted.as_dvec3());
         }
     }
 
@@ -688,6 +696,7 @@ mod tests {
         let cases = [
             (Vec3::new(0.1, -2.5, 1e-20), 0.75),
             (Vec3::new(7.999, 8.0, -8.001), 1.0),
+            (Vec3::new(2.827_9, -2.828_1, 2.828_5), 1.0),
             (Vec3::new(1e20, -3.0, 0.5), 0.5),
             (
                 Vec3::new(2.5 * 2f32.powi(-48), -2.5 * 2f32.powi(-48), 3e7),
