@@ -1,5 +1,6 @@
-//! Rendering throughput on the scene suite, and of splatting camera samples: the BVH build of every scene, closest-hit and
-//! occlusion throughput (rays per second) on the rays a 1-spp render of each scene traces, and
+//! Rendering throughput on the scene suite, and of splatting camera samples: the BVH build of
+//! every scene, closest-hit and occlusion throughput (rays per second) on the rays a 1-spp
+//! render of each scene traces, camera samples splatted per second into a film region, and
 //! samples per second of every integrator preset on the Cornell box, and on two threads the
 //! Cornell box with and without adaptive sampling (whose uneven per-pixel sample counts test how
 //! evenly the threads share a pass).

@@ -29,6 +29,7 @@
 use glam::{UVec2, Vec2};
 
 use super::Filter;
+use super::table::FilterTable;
 
 /// The most pixels a sample reaches along one axis on either side of its own:
 /// [`Splatter::new`] declines filters that reach further (tents or gaussians wider than
@@ -47,54 +48,37 @@ pub struct Splatter {
     rows: AxisWeights,
 }
 
-/// A splatted filter's signed density `f₁ / ∫|f₁|` (per pixel): the piecewise-linear
-/// interpolant of its values at equally spaced nodes over `[-radius, radius]`, which is
-/// [`Filter::signed_pdf_1d`] up to rounding (the same tables; the tent is linear between its
-/// three nodes), found with one multiplication and no dispatch on the filter, since every
-/// camera sample evaluates it `2 · (2 reach + 1)` times.
+/// A splatted filter's signed density `f₁ / ∫|f₁|` (per pixel) as its table
+/// ([`FilterTable::signed_pdf`]), which is [`Filter::signed_pdf_1d`] without a dispatch on the
+/// filter for each of the `2 · (2 reach + 1)` weights of every camera sample: the filters'
+/// own tables, and the tent's as its three nodes (exact, the tent being linear between them).
 #[derive(Clone, Debug)]
 struct SignedDensity {
+    table: FilterTable,
     /// Half-width of the support, in pixels.
     radius: f32,
-    /// Segments per pixel.
-    inv_spacing: f32,
-    /// Number of segments, `nodes.len() − 1`.
-    segments: f32,
-    /// The density at the nodes `−radius + i / inv_spacing`.
-    nodes: Vec<f32>,
 }
 
 impl SignedDensity {
     /// The density of a filter wider than a pixel; `None` for the box filter.
     fn new(filter: &Filter) -> Option<Self> {
-        let nodes = match filter {
+        let table = match filter {
             Filter::Box => return None,
-            Filter::Tent { radius } => vec![0.0, 1.0 / radius, 0.0],
-            Filter::Gaussian(g) => g.table().signed_pdf_at_nodes(),
-            Filter::Mitchell(m) => m.table().signed_pdf_at_nodes(),
-            Filter::Lanczos(l) => l.table().signed_pdf_at_nodes(),
+            Filter::Tent { radius } => FilterTable::new(*radius, 2, |x| filter.eval_1d(x)),
+            Filter::Gaussian(g) => g.table().clone(),
+            Filter::Mitchell(m) => m.table().clone(),
+            Filter::Lanczos(l) => l.table().clone(),
         };
-        let radius = filter.radius();
-        let segments = (nodes.len() - 1) as f32;
         Some(Self {
-            radius,
-            inv_spacing: segments / (2.0 * radius),
-            segments,
-            nodes,
+            table,
+            radius: filter.radius(),
         })
     }
 
     /// The density at offset `x` (pixels); zero outside `(-radius, radius)`.
     #[inline]
     fn at(&self, x: f32) -> f32 {
-        let position = (x + self.radius) * self.inv_spacing;
-        if !(position > 0.0 && position < self.segments) {
-            return 0.0;
-        }
-        let i = (position as u32 as usize).min(self.nodes.len() - 2);
-        let s = position - i as f32;
-        let [f0, f1] = [self.nodes[i], self.nodes[i + 1]];
-        f0 + (f1 - f0) * s
+        self.table.signed_pdf(x)
     }
 }
 

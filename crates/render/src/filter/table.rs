@@ -23,6 +23,10 @@ pub(super) struct FilterTable {
     cdf: Vec<f32>,
     /// Integral of the interpolant of `|f₁|` over `[-r, r]`, in pixels.
     total: f32,
+    /// `1 / total` and segments per pixel, `1 / h`: [`Self::pdf`] and [`Self::signed_pdf`] run
+    /// for every weight of every splatted camera sample, so they multiply rather than divide.
+    inv_total: f32,
+    inv_spacing: f32,
     /// Integral of the interpolant of `f₁` from `-r` to each node, divided by `total`.
     signed_cdf: Vec<f32>,
     /// Whether some node value is negative.
@@ -56,6 +60,8 @@ impl FilterTable {
             cdf: cumulative.iter().map(|c| (c / sum) as f32).collect(),
             signed_cdf: signed.iter().map(|c| (c / sum) as f32).collect(),
             total: sum as f32,
+            inv_total: (1.0 / sum) as f32,
+            inv_spacing: (segments as f64 / (2.0 * f64::from(radius))) as f32,
             negative_lobes: values.iter().any(|&v| v < 0.0),
             values,
         }
@@ -66,12 +72,6 @@ impl FilterTable {
         self.negative_lobes
     }
 
-    /// The signed density [`Self::signed_pdf`] at the nodes `−radius + i · 2 radius / (n − 1)`
-    /// (per pixel), `n` of them: the table that [`Self::signed_pdf`] interpolates linearly.
-    pub(super) fn signed_pdf_at_nodes(&self) -> Vec<f32> {
-        self.values.iter().map(|v| v / self.total).collect()
-    }
-
     /// Node spacing in pixels.
     fn spacing(&self) -> f32 {
         2.0 * self.radius / self.segments as f32
@@ -79,11 +79,11 @@ impl FilterTable {
 
     /// The segment holding offset `x` and the position within it, `None` outside `(-r, r)`.
     fn segment(&self, x: f32) -> Option<(usize, f32)> {
-        let position = (x + self.radius) / self.spacing();
+        let position = (x + self.radius) * self.inv_spacing;
         if !(position > 0.0 && position < self.segments as f32) {
             return None;
         }
-        let i = (position as usize).min(self.segments - 1);
+        let i = (position as u32 as usize).min(self.segments - 1);
         Some((i, position - i as f32))
     }
 
@@ -94,7 +94,7 @@ impl FilterTable {
             return 0.0;
         };
         let (f0, f1) = (self.values[i].abs(), self.values[i + 1].abs());
-        (f0 + (f1 - f0) * s) / self.total
+        (f0 + (f1 - f0) * s) * self.inv_total
     }
 
     /// The interpolant of `f₁` (signed) at offset `x`, divided by the same integral as
@@ -104,7 +104,7 @@ impl FilterTable {
             return 0.0;
         };
         let (f0, f1) = (self.values[i], self.values[i + 1]);
-        (f0 + (f1 - f0) * s) / self.total
+        (f0 + (f1 - f0) * s) * self.inv_total
     }
 
     /// The CDF of [`Self::pdf`] at offset `x`: exactly 0 at and below `-radius`, exactly 1 at
