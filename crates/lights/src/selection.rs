@@ -37,23 +37,26 @@ pub enum LightSelector {
     /// Probability proportional to a weight per light (power, selection weight or both), drawn
     /// from an alias table.
     Weighted(AliasTable),
-    /// Every light sampled at every vertex ([`LightSelection::All`]).
+    /// Every light with a positive weight sampled at every vertex ([`LightSelection::All`]).
     Every {
-        /// Number of lights.
-        count: u32,
+        /// Indices of the lights sampled, ascending.
+        sampled: Box<[u32]>,
     },
 }
 
 impl LightSelector {
     /// A selector over `lights` with selection weights `weights` (parallel to `lights`,
-    /// positive; Mitsuba's `sampling_weight`): each light is chosen with probability
-    /// proportional to its weight (`Uniform`) or to its power times its weight (`Power`, and
-    /// `Ris`, whose candidates come from this selector). Falls
-    /// back to the weights alone when no light has positive finite power, and to uniform when
-    /// they are all equal. `None` when there are no lights.
+    /// non-negative; Mitsuba's `sampling_weight`, or 0 for a light that light sampling leaves
+    /// alone): each light is chosen with probability proportional to its weight (`Uniform`) or
+    /// to its power times its weight (`Power`, and `Ris`, whose candidates come from this
+    /// selector). Falls back to the weights alone when no light has positive finite power, and
+    /// to uniform when they are all equal. `None` when no light has a positive weight.
     pub fn new(lights: &[Light], weights: &[f32], selection: LightSelection) -> Option<Self> {
         debug_assert_eq!(lights.len(), weights.len());
-        if lights.is_empty() {
+        let sampled: Box<[u32]> = (0..weights.len() as u32)
+            .filter(|&i| weights[i as usize] > 0.0)
+            .collect();
+        if sampled.is_empty() {
             return None;
         }
         let by_weight = || {
@@ -69,9 +72,7 @@ impl LightSelector {
             }
         };
         Some(match selection {
-            LightSelection::All => LightSelector::Every {
-                count: lights.len() as u32,
-            },
+            LightSelection::All => LightSelector::Every { sampled },
             LightSelection::Uniform => by_weight(),
             LightSelection::Power | LightSelection::Ris { .. } => {
                 let powers: Vec<f32> = lights
@@ -87,15 +88,32 @@ impl LightSelector {
     }
 
     /// The index of a light and its probability, for `u` uniform in [0, 1) ([`LightSelector::Every`],
-    /// which never needs to choose, chooses uniformly).
+    /// which never needs to choose, chooses uniformly among the lights it samples).
     #[inline]
     pub fn select(&self, u: f32) -> (usize, f32) {
         match self {
-            LightSelector::Uniform { count } | LightSelector::Every { count } => {
+            LightSelector::Uniform { count } => {
                 let index = ((u * *count as f32) as u32).min(count - 1);
                 (index as usize, 1.0 / *count as f32)
             }
+            LightSelector::Every { sampled } => {
+                let count = sampled.len() as u32;
+                let index = ((u * count as f32) as u32).min(count - 1);
+                (sampled[index as usize] as usize, 1.0 / count as f32)
+            }
             LightSelector::Weighted(table) => table.sample(u),
+        }
+    }
+
+    /// The lights that light sampling samples, by index: every light [`Self::pmf`] is positive
+    /// for, ascending.
+    pub fn sampled(&self) -> Vec<u32> {
+        match self {
+            LightSelector::Uniform { count } => (0..*count).collect(),
+            LightSelector::Every { sampled } => sampled.to_vec(),
+            LightSelector::Weighted(table) => (0..table.len() as u32)
+                .filter(|&i| table.pmf(i as usize) > 0.0)
+                .collect(),
         }
     }
 
@@ -104,7 +122,9 @@ impl LightSelector {
     #[inline]
     pub fn pmf(&self, index: usize) -> f32 {
         match self {
-            LightSelector::Every { .. } => 1.0,
+            LightSelector::Every { sampled } => {
+                f32::from(u8::from(sampled.binary_search(&(index as u32)).is_ok()))
+            }
             LightSelector::Uniform { count } => 1.0 / *count as f32,
             LightSelector::Weighted(table) => table.pmf(index),
         }

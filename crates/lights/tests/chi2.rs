@@ -486,3 +486,66 @@ fn selection_weights_scale_the_pmf() {
         LightSelector::new(&lights, &weights, LightSelection::Power).expect("lights exist");
     assert_selects("power selection, weighted", &selector, &by_power, 10);
 }
+
+/// A light of weight 0 (one light sampling leaves to BSDF samples) is never chosen and has pmf
+/// 0, in every mode; the others keep their proportions; with no light of positive weight there
+/// is no selector.
+#[test]
+fn lights_of_weight_zero_are_never_selected() {
+    let lights = lights_of_varying_power();
+    let skipped = 1;
+    let weights: Vec<f32> = (0..lights.len())
+        .map(|i| if i == skipped { 0.0 } else { 1.0 })
+        .collect();
+    let sampled: Vec<u32> = (0..lights.len() as u32)
+        .filter(|&i| i as usize != skipped)
+        .collect();
+    let uniform: Vec<f64> = (0..lights.len())
+        .map(|i| {
+            if i == skipped {
+                0.0
+            } else {
+                1.0 / (lights.len() - 1) as f64
+            }
+        })
+        .collect();
+    let selector =
+        LightSelector::new(&lights, &weights, LightSelection::Uniform).expect("lights exist");
+    assert_selects(
+        "uniform selection, one light left out",
+        &selector,
+        &uniform,
+        11,
+    );
+    for selection in [
+        LightSelection::Uniform,
+        LightSelection::Power,
+        LightSelection::Ris { candidates: 4 },
+        LightSelection::All,
+    ] {
+        let selector = LightSelector::new(&lights, &weights, selection).expect("lights exist");
+        assert_eq!(selector.pmf(skipped), 0.0, "{selection:?}");
+        assert!(selector.pmf(0) > 0.0, "{selection:?}");
+        // Every light but the black sphere (no power) is sampled.
+        let expected: Vec<u32> = match selection {
+            LightSelection::Power | LightSelection::Ris { .. } => sampled
+                .iter()
+                .copied()
+                .filter(|&i| lights[i as usize].power() > 0.0)
+                .collect(),
+            _ => sampled.clone(),
+        };
+        assert_eq!(selector.sampled(), expected, "{selection:?}");
+        for k in 0..4096 {
+            let u = (k as f32 + 0.5) / 4096.0;
+            let (index, pmf) = selector.select(u);
+            assert_ne!(index, skipped, "{selection:?}, u {u}");
+            // `All` samples every light (pmf 1) and chooses, when asked, uniformly.
+            if selection != LightSelection::All {
+                assert_eq!(pmf, selector.pmf(index), "{selection:?}, u {u}");
+            }
+        }
+    }
+    let none = vec![0.0; lights.len()];
+    assert!(LightSelector::new(&lights, &none, LightSelection::Power).is_none());
+}

@@ -1,6 +1,6 @@
 //! The path tracer draws the sampler dimensions its documentation lists, and only those the scene
-//! needs: per vertex the light choice (1D) only with more than one light (and not when every light
-//! is sampled), the light point (2D),
+//! needs: per vertex the light choice (1D) only with more than one light to sample (and not when
+//! every light is sampled), the light point (2D),
 //! the BSDF lobe (1D) only when some material chooses a lobe (a dielectric), the BSDF direction
 //! (2D), and the roulette number (1D) only from roulette's start depth. Every path's sequence of
 //! draws must be a prefix of that per-vertex pattern repeated; a path may stop anywhere in it, and

@@ -14,9 +14,9 @@
 //! [`SCENE_ALPHA`] (0.01) per scene version over every comparison its test makes (Bonferroni
 //! over at most [`MAX_COMPARISONS`], so [`ALPHA`] ≈ 4.2e-4 per comparison of a configuration
 //! with the oracle), a third of that per level (Bonferroni), Šidák's correction within a level.
-//! Every test must pass. Over the suite's 22 scene versions, a new realisation of every sample
+//! Every test must pass. Over the suite's 23 scene versions, a new realisation of every sample
 //! (a change of seeds or of the dimension order) fails a correct renderer somewhere with
-//! probability at most 1 − 0.99²² ≈ 20%; at 0.01 per comparison (the first version of this
+//! probability at most 1 − 0.99²³ ≈ 21%; at 0.01 per comparison (the first version of this
 //! test) it was expected to fail about three of its ~340 comparisons.
 //!
 //! **Configurations.** Every switch of the path integrator on MIS (power heuristic,
@@ -662,6 +662,34 @@ fn thin_lens() {
         "thinlens",
         Version::file("thinlens.xml"),
         Budget::new(3072, 80, 4),
+        None,
+    );
+}
+
+/// The soft shadows scene under a constant sky (radiance 0.5) besides its square light (edge
+/// 2.4 instead of 1.6), at `max_depth` 3: where MIS is on, light sampling leaves the sky to
+/// BSDF samples, which then count in full; light-only keeps sampling it.
+#[test]
+fn soft_shadow_under_a_sky() {
+    check_scene(
+        "softshadow-sky",
+        Version {
+            replace: &[
+                (
+                    r#"<scale value="0.8"/>
+            <rotate x="1" angle="90"/>"#,
+                    r#"<scale value="1.2"/>
+            <rotate x="1" angle="90"/>"#,
+                ),
+                (
+                    "</scene>",
+                    r#"<emitter type="constant"><rgb name="radiance" value="0.5"/></emitter></scene>"#,
+                ),
+            ],
+            max_depth: Some(3),
+            ..Version::file("softshadow.xml")
+        },
+        Budget::new(8192, 80, 32),
         None,
     );
 }

@@ -34,19 +34,20 @@ use world::SurfaceHit;
 /// more than the choice's variance does.
 pub const MAX_EVERY_LIGHT: usize = 8;
 
-/// A sample of each of `lights` by `u_point`, seen from `surface` in the direction `wo` (local
-/// frame), passed to `visit` in the lights' order; each weighted 1 / pdf per steradian. Lights
-/// whose sample carries nothing are skipped.
+/// A sample of each of the `sampled` lights (indices into `lights`) by `u_point`, seen from
+/// `surface` in the direction `wo` (local frame), passed to `visit` in that order; each weighted
+/// 1 / pdf per steradian. Lights whose sample carries nothing are skipped.
 #[inline(always)]
 pub(super) fn sample_each(
+    sampled: &[u32],
     lights: &[Light],
     surface: &SurfaceHit<'_>,
     wo: Vec3,
     u_point: Vec2,
     mut visit: impl FnMut(ChosenLight),
 ) {
-    for light in lights {
-        if let Some(sample) = evaluate(light, 1.0, surface, wo, u_point) {
+    for &index in sampled {
+        if let Some(sample) = evaluate(&lights[index as usize], 1.0, surface, wo, u_point) {
             visit(ChosenLight {
                 weight: 1.0 / sample.sample.pdf_solid_angle,
                 ..sample

@@ -79,7 +79,9 @@ pub(crate) fn sample_lights(
             ris::choose(candidates, selector, lights, surface, wo, u_choice, u_point)
         }
         LightSelection::All => {
-            every::sample_each(lights, surface, wo, u_point, visit);
+            if let LightSelector::Every { sampled } = selector {
+                every::sample_each(sampled, lights, surface, wo, u_point, visit);
+            }
             return;
         }
     };

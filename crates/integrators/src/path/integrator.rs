@@ -5,17 +5,18 @@
 //! Sampler dimensions per vertex, in this order and only for the techniques switched on and what
 //! the scene needs (so a configuration consumes a fixed, documented sequence for a scene, the
 //! same at every vertex whatever surface it is on): light choice (1D, with next event
-//! estimation when the scene has more than one light), RIS's reservoir choice (1D, with RIS
-//! light selection when the scene has more than one light) and light point (2D, with next event
+//! estimation when it has more than one light to sample: under MIS a constant environment is
+//! left to BSDF samples), RIS's reservoir choice (1D, with RIS light selection and more than one
+//! light to sample) and light point (2D, with next event
 //! estimation); BSDF lobe (1D, when some material chooses between lobes: a dielectric) and BSDF
 //! direction (2D) always; roulette (1D, with Russian roulette from its start depth on). With
 //! [`DirectSamples`] (Mitsuba's `direct` integrator) the first vertex draws the light numbers once
 //! per light sample, then the BSDF numbers once per BSDF sample, and nothing else is drawn.
 
 use crate::path_reuse::ReusablePath;
-use crate::settings::{DirectSamples, PathSettings};
+use crate::settings::{DirectSamples, Mis, PathSettings};
 use glam::Vec3;
-use lights::{LightSelection, LightSelector};
+use lights::{Light, LightSelection, LightSelector};
 use sampling::Sampler;
 use world::{BsdfSlot, CameraRay, RayTally, World};
 
@@ -40,16 +41,17 @@ impl PathIntegrator {
         if world.has_motion() {
             settings.path_reuse = None;
         }
+        let selector = LightSelector::new(
+            world.lights(),
+            &sampling_weights(world, &settings),
+            settings.light_selection,
+        );
+        let choices = selector.as_ref().is_some_and(|s| s.sampled().len() > 1);
         Self {
             settings,
-            selector: LightSelector::new(
-                world.lights(),
-                world.light_weights(),
-                settings.light_selection,
-            ),
-            draws_light_choice: world.lights().len() > 1
-                && settings.light_selection != LightSelection::All,
-            draws_reservoir_choice: world.lights().len() > 1
+            selector,
+            draws_light_choice: choices && settings.light_selection != LightSelection::All,
+            draws_reservoir_choice: choices
                 && matches!(settings.light_selection, LightSelection::Ris { .. }),
             draws_lobe_choice: world.has_lobe_choice(),
         }
@@ -123,4 +125,30 @@ impl PathIntegrator {
             self.walk::<false>(world, camera_ray, sampler, counters, slot)
         }
     }
+}
+
+/// Each light's weight for light sampling: the scene's selection weight, or 0 for a light left
+/// to BSDF samples. A constant environment is, where the walk's BSDF samples find emission and
+/// MIS weighs them (pbrt-v4's path tracer does the same): its radiance is the same from every
+/// direction, so the BSDF's own sampling already follows f · cos, the whole integrand but the
+/// visibility, while the environment's uniform sphere sends half its directions below the
+/// surface. Its light samples would only take shadow rays and light choices from the other
+/// lights. Emission found where no light sample could have found it counts in full, so the
+/// estimate stays unbiased.
+fn sampling_weights(world: &World, settings: &PathSettings) -> Vec<f32> {
+    let bsdf_finds_it = settings.sample_bsdf
+        && settings.mis != Mis::Off
+        && settings.direct_samples.is_none_or(|d| d.bsdf > 0);
+    world
+        .lights()
+        .iter()
+        .zip(world.light_weights())
+        .map(|(light, &weight)| {
+            if bsdf_finds_it && matches!(light, Light::Environment(_)) {
+                0.0
+            } else {
+                weight
+            }
+        })
+        .collect()
 }

@@ -21,7 +21,9 @@
 //! w_a = n_a p_a / (n_a p_a + n_b p_b)        w_a = (n_a p_a)² / ((n_a p_a)² + (n_b p_b)²)
 //! ```
 //!
-//! The light strategy's density per steradian includes the light selection probability.
+//! The light strategy's density per steradian includes the light selection probability. A light
+//! that light sampling never chooses (a constant environment under MIS, see
+//! `PathIntegrator::new`) has density 0 there, so the BSDF sample that finds it gets weight 1.
 //!
 //! **When `auto` uses it.** The power heuristic wherever lights are sampled and some light can
 //! be hit by a BSDF sample (an area light or an environment); off where every light is a delta
