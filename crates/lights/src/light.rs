@@ -265,6 +265,18 @@ macro_rules! light_set {
     };
 }
 
+impl Light {
+    /// Whether light sampling leaves this light to BSDF samples where they continue a path and
+    /// MIS weighs them: a constant environment, whose radiance is the same from every
+    /// direction, so a BSDF sample already follows the whole integrand but the visibility,
+    /// while its light samples are uniform over the sphere (half of them below the surface)
+    /// and take light choices and shadow rays from the other lights (pbrt-v4's path tracer
+    /// does the same).
+    pub fn left_to_bsdf_samples(&self) -> bool {
+        matches!(self, Light::Environment(_))
+    }
+}
+
 light_set! {
     /// Area emitter on a triangle mesh.
     Mesh(MeshAreaLight),

@@ -178,9 +178,9 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         // A saved or resumed render keeps the base: its parts may have different budgets, and
         // a pilot's choice could differ between them. What the user pinned is not tried.
         if is_auto && args.state.is_none() && args.resume.is_none() {
-            let many_lights = settings.sample_lights
-                && features.light_count >= 2
-                && settings.direct_samples.is_none();
+            let lights = features.lights_sampled_under_mis();
+            let many_lights =
+                settings.sample_lights && lights >= 2 && settings.direct_samples.is_none();
             let reusing = PathSettings {
                 path_reuse: Some(PathReuse {
                     block: auto::REUSE_BLOCK,
@@ -191,7 +191,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             trials = Trials {
                 ris: many_lights,
                 uniform_lights: many_lights,
-                every_light: many_lights && features.light_count <= MAX_EVERY_LIGHT,
+                every_light: many_lights && lights <= MAX_EVERY_LIGHT,
                 no_roulette: args.rr.is_none()
                     && settings.direct_samples.is_none()
                     && settings
@@ -268,12 +268,14 @@ pub fn plan_from_flags(scene: &RenderScene, flags: &[&str]) -> Result<RenderPlan
 }
 
 /// `auto`'s base: the MIS preset minus what the scene cannot use. No light sampling where every
-/// BSDF is a delta or there are no lights; no MIS where no light can be hit; uniform choice (no
-/// table) for one light. The techniques whose payoff depends on the scene are measured on it
-/// before the render ([`crate::auto`]).
+/// BSDF is a delta or there are no lights to sample (a constant environment is left to BSDF
+/// samples); no MIS where no light can be hit; uniform choice (no table) for one light. The
+/// techniques whose payoff depends on the scene are measured on it before the render
+/// ([`crate::auto`]).
 pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSettings {
-    let sample_lights = features.light_count > 0 && features.has_non_delta_bsdfs;
-    let light_selection = match features.light_count {
+    let lights = features.lights_sampled_under_mis();
+    let sample_lights = lights > 0 && features.has_non_delta_bsdfs;
+    let light_selection = match lights {
         0 | 1 => LightSelection::Uniform,
         _ => LightSelection::Power,
     };
@@ -319,7 +321,8 @@ fn fold_seed(seed: u64) -> u32 {
 mod tests {
     use super::*;
 
-    /// `lights` lights of which `area` are area lights, plus the environment when `environment`.
+    /// `lights` lights of which `area` are area lights, and one a constant environment when
+    /// `environment`.
     fn features(lights: usize, area: usize, environment: bool) -> SceneFeatures {
         SceneFeatures {
             light_count: lights,
@@ -327,6 +330,7 @@ mod tests {
             has_delta_bsdfs: false,
             area_light_count: area,
             has_environment: environment,
+            lights_left_to_bsdf: usize::from(environment),
             has_glossy_bsdfs: false,
             has_null_lobes: false,
             has_diffuse_bsdfs: true,
@@ -364,5 +368,18 @@ mod tests {
         assert_eq!(base(&features(1, 1, false)).mis, Mis::Power);
         let no_lights = base(&features(0, 0, false));
         assert!(!no_lights.sample_lights);
+    }
+
+    #[test]
+    fn auto_base_leaves_a_constant_sky_to_bsdf_samples() {
+        // The sky alone: nothing for light sampling; BSDF samples find it in full.
+        let sky = base(&features(1, 0, true));
+        assert!(!sky.sample_lights);
+        assert_eq!(sky.mis, Mis::Off);
+        // The sky and one area light: one light to sample, nothing to choose.
+        let sky_and_lamp = base(&features(2, 1, true));
+        assert!(sky_and_lamp.sample_lights);
+        assert_eq!(sky_and_lamp.mis, Mis::Power);
+        assert_eq!(sky_and_lamp.light_selection, LightSelection::Uniform);
     }
 }

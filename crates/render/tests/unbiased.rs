@@ -196,7 +196,9 @@ fn changes_nothing(scene: &RenderScene, configuration: &Configuration) -> bool {
         "light tracing" => {
             LightTracer::new(&scene.world, settings, scene.camera.traits()).is_none()
         }
-        "mis power uniform selection" | "mis power every light" => scene.features.light_count <= 1,
+        "mis power uniform selection" | "mis power every light" => {
+            scene.features.lights_sampled_under_mis() <= 1
+        }
         _ => false,
     }
 }

@@ -14,6 +14,9 @@ pub struct SceneFeatures {
     pub area_light_count: usize,
     /// True when the scene has an environment emitter.
     pub has_environment: bool,
+    /// Lights that light sampling leaves to BSDF samples under MIS
+    /// ([`Light::left_to_bsdf_samples`]: a constant environment).
+    pub lights_left_to_bsdf: usize,
     /// True when some material has a glossy lobe ([`BsdfFlags::GLOSSY`]: a rough conductor).
     pub has_glossy_bsdfs: bool,
     /// True when some material has a delta lobe (mirror, smooth dielectric, or a twosided
@@ -36,6 +39,13 @@ impl SceneFeatures {
         self.area_light_count > 0 || self.has_environment
     }
 
+    /// Lights that next event estimation samples where BSDF samples continue the path and MIS
+    /// weighs them (`auto`'s base): all but those [left to BSDF
+    /// samples](Light::left_to_bsdf_samples).
+    pub fn lights_sampled_under_mis(&self) -> usize {
+        self.light_count - self.lights_left_to_bsdf
+    }
+
     /// True when some light is a delta light (point lights), which no ray can hit.
     pub fn has_delta_lights(&self) -> bool {
         self.area_light_count + usize::from(self.has_environment) < self.light_count
@@ -52,6 +62,7 @@ impl SceneFeatures {
                 .any(|m| m.flags().contains(BsdfFlags::DELTA)),
             area_light_count: lights.iter().filter(|l| l.is_area()).count(),
             has_environment: lights.iter().any(Light::is_environment),
+            lights_left_to_bsdf: lights.iter().filter(|l| l.left_to_bsdf_samples()).count(),
             has_glossy_bsdfs: materials
                 .iter()
                 .any(|m| m.flags().contains(BsdfFlags::GLOSSY)),

@@ -192,13 +192,18 @@ pub fn ladder(
         .iter()
         .any(|c| c.name == best_name)
         .then_some(best_name);
-    if can_sample_lights && features.light_count > 1 {
+    // Lights that `best` samples: under MIS, not a constant environment.
+    let sampled = if best.mis == Mis::Off {
+        features.light_count
+    } else {
+        features.lights_sampled_under_mis()
+    };
+    if can_sample_lights && sampled > 1 {
         let uniform = LightSelection::Uniform;
         let ris = LightSelection::Ris {
             candidates: RIS_CANDIDATES,
         };
-        let every = (features.light_count <= MAX_EVERY_LIGHT)
-            .then_some(("every-light", LightSelection::All));
+        let every = (sampled <= MAX_EVERY_LIGHT).then_some(("every-light", LightSelection::All));
         let selections = [("uniform-lights", uniform), ("ris-lights", ris)];
         for (name, light_selection) in selections.into_iter().chain(every) {
             let settings = PathSettings {
@@ -317,6 +322,7 @@ mod tests {
             has_delta_bsdfs: false,
             area_light_count: if has_delta_lights { 0 } else { light_count },
             has_environment: false,
+            lights_left_to_bsdf: 0,
             has_glossy_bsdfs: false,
             has_null_lobes: false,
             has_diffuse_bsdfs: true,

@@ -8,7 +8,7 @@
 //! estimation when it has more than one light to sample: under MIS a constant environment is
 //! left to BSDF samples), RIS's reservoir choice (1D, with RIS light selection and more than one
 //! light to sample) and light point (2D, with next event
-//! estimation); BSDF lobe (1D, when some material chooses between lobes: a dielectric) and BSDF
+//! estimation and a light to sample); BSDF lobe (1D, when some material chooses between lobes: a dielectric) and BSDF
 //! direction (2D) always; roulette (1D, with Russian roulette from its start depth on). With
 //! [`DirectSamples`] (Mitsuba's `direct` integrator) the first vertex draws the light numbers once
 //! per light sample, then the BSDF numbers once per BSDF sample, and nothing else is drawn.
@@ -16,7 +16,7 @@
 use crate::path_reuse::ReusablePath;
 use crate::settings::{DirectSamples, Mis, PathSettings};
 use glam::Vec3;
-use lights::{Light, LightSelection, LightSelector};
+use lights::{LightSelection, LightSelector};
 use sampling::Sampler;
 use world::{BsdfSlot, CameraRay, RayTally, World};
 
@@ -69,7 +69,7 @@ impl PathIntegrator {
     /// dimensions without being a vertex.
     pub fn sampler_dimensions(&self, vertices: u32) -> u32 {
         let settings = &self.settings;
-        let per_light_sample = u32::from(settings.sample_lights)
+        let per_light_sample = u32::from(settings.sample_lights && self.selector.is_some())
             * (1 + u32::from(self.draws_light_choice) + u32::from(self.draws_reservoir_choice));
         let per_bsdf_sample = u32::from(self.draws_lobe_choice) + 1;
         if let Some(DirectSamples { light, bsdf }) = settings.direct_samples {
@@ -127,14 +127,10 @@ impl PathIntegrator {
     }
 }
 
-/// Each light's weight for light sampling: the scene's selection weight, or 0 for a light left
-/// to BSDF samples. A constant environment is, where the walk's BSDF samples find emission and
-/// MIS weighs them (pbrt-v4's path tracer does the same): its radiance is the same from every
-/// direction, so the BSDF's own sampling already follows f · cos, the whole integrand but the
-/// visibility, while the environment's uniform sphere sends half its directions below the
-/// surface. Its light samples would only take shadow rays and light choices from the other
-/// lights. Emission found where no light sample could have found it counts in full, so the
-/// estimate stays unbiased.
+/// Each light's weight for light sampling: the scene's selection weight, or 0 for a light
+/// [left to BSDF samples](lights::Light::left_to_bsdf_samples) where the walk's BSDF samples find
+/// emission and MIS weighs them. Emission that no light sample could have found counts in
+/// full, so the estimate stays unbiased.
 fn sampling_weights(world: &World, settings: &PathSettings) -> Vec<f32> {
     let bsdf_finds_it = settings.sample_bsdf
         && settings.mis != Mis::Off
@@ -144,7 +140,7 @@ fn sampling_weights(world: &World, settings: &PathSettings) -> Vec<f32> {
         .iter()
         .zip(world.light_weights())
         .map(|(light, &weight)| {
-            if bsdf_finds_it && matches!(light, Light::Environment(_)) {
+            if bsdf_finds_it && light.left_to_bsdf_samples() {
                 0.0
             } else {
                 weight

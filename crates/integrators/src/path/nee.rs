@@ -125,14 +125,14 @@ impl PathIntegrator {
         counts: StrategyCounts,
         mut visit: impl FnMut(ShadowedLight),
     ) {
+        let Some(selector) = self.selector.as_ref() else {
+            return;
+        };
         let u_choice = self.light_numbers(sampler);
         let u_point = sampler.next_2d();
         if surface.bsdf.flags().is_delta() {
             return;
         }
-        let Some(selector) = self.selector.as_ref() else {
-            return;
-        };
         let mode = self.settings.light_selection;
         sample_lights(
             mode,
