@@ -118,7 +118,8 @@ impl LightSelector {
     }
 
     /// Expected light samples light `index` gets per vertex, what MIS weighs its density by:
-    /// the probability that [`Self::select`] returns it, or 1 for [`LightSelector::Every`].
+    /// the probability that [`Self::select`] returns it, or for [`LightSelector::Every`] 1 for
+    /// the lights it samples and 0 for the others.
     #[inline]
     pub fn pmf(&self, index: usize) -> f32 {
         match self {

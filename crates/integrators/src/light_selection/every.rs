@@ -1,7 +1,7 @@
 //! Every light sampled at every vertex: no choice at all.
 //!
-//! **What it is.** Where a scene has a few lights of similar importance (two lamps and the sky
-//! of an open scene), choosing one per vertex adds the variance of the choice: a vertex lit by
+//! **What it is.** Where a scene has a few lights of similar importance (two lamps and a
+//! window light), choosing one per vertex adds the variance of the choice: a vertex lit by
 //! one lamp is estimated from the other lamp's sample half of the time. Sampling each light
 //! once per vertex removes that variance and pays one shadow ray per light instead. All lights
 //! take the vertex's one point number: each light's estimate is unbiased alone, so their sum

@@ -7,9 +7,9 @@
 //! same at every vertex whatever surface it is on): light choice (1D, with next event
 //! estimation when it has more than one light to sample: under MIS a constant environment is
 //! left to BSDF samples), RIS's reservoir choice (1D, with RIS light selection and more than one
-//! light to sample) and light point (2D, with next event
-//! estimation and a light to sample); BSDF lobe (1D, when some material chooses between lobes: a dielectric) and BSDF
-//! direction (2D) always; roulette (1D, with Russian roulette from its start depth on). With
+//! light to sample) and light point (2D, with next event estimation and a light to sample); BSDF
+//! lobe (1D, when some material chooses between lobes: a dielectric) and BSDF direction (2D)
+//! always; roulette (1D, with Russian roulette from its start depth on). With
 //! [`DirectSamples`] (Mitsuba's `direct` integrator) the first vertex draws the light numbers once
 //! per light sample, then the BSDF numbers once per BSDF sample, and nothing else is drawn.
 

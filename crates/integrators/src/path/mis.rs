@@ -22,8 +22,9 @@
 //! ```
 //!
 //! The light strategy's density per steradian includes the light selection probability. A light
-//! that light sampling never chooses (a constant environment under MIS, see
-//! `PathIntegrator::new`) has density 0 there, so the BSDF sample that finds it gets weight 1.
+//! that light sampling never chooses (one [left to BSDF
+//! samples](lights::Light::left_to_bsdf_samples)) has density 0 there, so the BSDF sample that
+//! finds it gets weight 1.
 //!
 //! **When `auto` uses it.** The power heuristic wherever lights are sampled and some light can
 //! be hit by a BSDF sample (an area light or an environment); off where every light is a delta
