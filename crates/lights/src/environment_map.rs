@@ -6,6 +6,7 @@ use crate::sample::{LightSample, mean_rgb};
 use glam::{Mat3, Vec2, Vec3};
 use sampling::distribution::CdfTable;
 use std::f32::consts::{PI, TAU};
+use std::sync::Arc;
 
 /// Why an environment map cannot be built from an image.
 #[derive(Clone, Debug, PartialEq)]
@@ -60,19 +61,27 @@ impl std::error::Error for EnvironmentMapError {}
 ///
 /// Sampling picks a cell between four texels with probability proportional to its brightest
 /// texel's mean over RGB times the cell's solid angle, then a point uniform in (u, v) within it,
-/// so that every direction with L > 0 has a positive density.
+/// so that every direction with L > 0 has a positive density. Under MIS a path tracer samples
+/// [`Self::compensated`] instead.
 #[derive(Clone, Debug)]
 pub struct EnvironmentMap {
     width: u32,
     height: u32,
-    /// Radiance times `scale`, W m⁻² sr⁻¹, row-major from the top row.
-    texels: Vec<Vec3>,
+    /// Radiance times `scale`, W m⁻² sr⁻¹, row-major from the top row (shared with the
+    /// compensated copy).
+    texels: Arc<[Vec3]>,
     to_world: Mat3,
     to_local: Mat3,
     /// One entry per cell, row-major: height − 1 rows of width cells.
-    cells: CdfTable,
+    cells: Arc<CdfTable>,
+    /// The cells of [`Self::compensated`] and the mean excess they sample, W m⁻² sr⁻¹ (`None`
+    /// when nothing exceeds the mean, and in the compensated copy itself).
+    compensation: Option<(Arc<CdfTable>, f32)>,
     /// Mean over the sphere of the radiance's mean over RGB, W m⁻² sr⁻¹.
     mean_radiance: f32,
+    /// Mean over the sphere of what `cells` samples, W m⁻² sr⁻¹: the radiance, or for the
+    /// compensated copy its excess over `mean_radiance`. Power and irradiance estimates use it.
+    sampled_radiance: f32,
     /// Radius of a sphere bounding the scene (world units), used only to estimate power.
     scene_radius: f32,
 }
@@ -114,46 +123,56 @@ impl EnvironmentMap {
             columns[1].normalize(),
             columns[2].normalize(),
         );
-        let texels: Vec<Vec3> = texels.iter().map(|&t| t * scale).collect();
-        let (w, h) = (width as usize, height as usize);
-        let lum = |i: usize, j: usize| mean_rgb(texels[i * w + j % w]);
-        let theta = |i: usize| PI * i as f32 / (h - 1) as f32;
-        let mut weights = Vec::with_capacity((h - 1) * w);
-        for i in 0..h - 1 {
-            let band = theta(i).cos() - theta(i + 1).cos();
-            for j in 0..w {
-                let brightest = lum(i, j)
-                    .max(lum(i, j + 1))
-                    .max(lum(i + 1, j))
-                    .max(lum(i + 1, j + 1));
-                weights.push(brightest * band);
-            }
-        }
+        let texels: Arc<[Vec3]> = texels.iter().map(|&t| t * scale).collect();
+        let weights = cell_weights(&texels, width, height, 0.0);
         // A black map is never sampled (its weight is zero); any valid table serves.
         let cells = CdfTable::new(&weights)
             .or_else(|_| CdfTable::new(&vec![1.0; weights.len()]))
             .expect("positive weights");
-        // Mean radiance over the sphere: each texel's row weighted by the solid angle around it.
-        let mut sum = 0.0_f64;
-        let mut solid_angle = 0.0_f64;
-        for i in 0..h {
-            let (lo, hi) = (theta(i.saturating_sub(1)), theta((i + 1).min(h - 1)));
-            let band = f64::from((0.5 * (lo + theta(i))).cos() - (0.5 * (theta(i) + hi)).cos());
-            for j in 0..w {
-                sum += f64::from(lum(i, j)) * band;
-                solid_angle += band;
-            }
-        }
+        let mean_radiance = mean_above(&texels, width, height, 0.0);
+        let compensation = CdfTable::new(&cell_weights(&texels, width, height, mean_radiance))
+            .ok()
+            .map(|cells| {
+                let excess = mean_above(&texels, width, height, mean_radiance);
+                (Arc::new(cells), excess)
+            });
         Ok(Self {
             width,
             height,
             texels,
             to_world: rotation,
             to_local: rotation.transpose(),
-            cells,
-            mean_radiance: (sum / solid_angle) as f32,
+            cells: Arc::new(cells),
+            compensation,
+            mean_radiance,
+            sampled_radiance: mean_radiance,
             scene_radius,
         })
+    }
+
+    /// The map as a path tracer's light sampling under MIS samples it: cells drawn in
+    /// proportion to how far their brightest texel's mean over RGB exceeds the map's
+    /// [mean radiance](Self::mean_radiance), times their solid angle (pbrt-v4's compensated
+    /// distribution, after Karlík et al., "MIS Compensation", 2019). Where light sampling has no
+    /// density, MIS gives the BSDF sample that finds the map weight 1, and BSDF samples already
+    /// find a map's even part well; light samples then go to what stands out (a sun), not to
+    /// the sky around it. The radiance is the same; [`Self::power`] is that of the excess.
+    /// `None` where no cell exceeds the mean (a constant map): the map is then left to BSDF
+    /// samples whole.
+    pub fn compensated(&self) -> Option<EnvironmentMap> {
+        let (cells, excess) = self.compensation.clone()?;
+        Some(Self {
+            cells,
+            compensation: None,
+            sampled_radiance: excess,
+            ..self.clone()
+        })
+    }
+
+    /// Whether some cell's brightest texel exceeds the mean radiance, so that there is a
+    /// [compensated](Self::compensated) map.
+    pub fn has_compensated(&self) -> bool {
+        self.compensation.is_some()
     }
 
     /// (u, v) of the world direction `w` (unit length), and sin θ in the map's frame.
@@ -226,7 +245,11 @@ impl EnvironmentMap {
         }
         let local = Vec3::new(phi.sin() * sin_theta, theta.cos(), -phi.cos() * sin_theta);
         let wi = (self.to_world * local).normalize();
-        let pdf = self.cell_density(row, column) / (2.0 * PI * PI * sin_theta);
+        // The density of the cell `wi` falls in when looked up again, which rounding can make a
+        // neighbour of the one sampled at a cell's edge: so that the sample's density is the
+        // one MIS computes for the same direction (a neighbour of a compensated map's cell may
+        // have none).
+        let pdf = self.pdf_li(wi);
         (pdf > 0.0 && pdf.is_finite()).then(|| LightSample {
             radiance: self.radiance(wi),
             wi,
@@ -244,11 +267,52 @@ impl EnvironmentMap {
         self.mean_radiance
     }
 
-    /// Power reaching the scene (W, mean over channels): mean radiance · π · π r² of the
-    /// bounding disc, as for a constant environment.
+    /// Power reaching the scene (W, mean over channels) of what [`Self::sample_li`] samples:
+    /// mean radiance (for a [compensated](Self::compensated) map, mean excess over it) · π ·
+    /// π r² of the bounding disc, as for a constant environment.
     pub fn power(&self) -> f32 {
-        self.mean_radiance * PI * PI * self.scene_radius * self.scene_radius
+        self.sampled_radiance * PI * PI * self.scene_radius * self.scene_radius
     }
+}
+
+/// The sampling weight of every cell of a `width` × `height` map of `texels` (row-major: height
+/// − 1 rows of width cells): the amount by which its brightest texel's mean over RGB exceeds
+/// `floor` (0 or more), times its solid angle.
+fn cell_weights(texels: &[Vec3], width: u32, height: u32, floor: f32) -> Vec<f32> {
+    let (w, h) = (width as usize, height as usize);
+    let lum = |i: usize, j: usize| mean_rgb(texels[i * w + j % w]);
+    let theta = |i: usize| PI * i as f32 / (h - 1) as f32;
+    let mut weights = Vec::with_capacity((h - 1) * w);
+    for i in 0..h - 1 {
+        let band = theta(i).cos() - theta(i + 1).cos();
+        for j in 0..w {
+            let brightest = lum(i, j)
+                .max(lum(i, j + 1))
+                .max(lum(i + 1, j))
+                .max(lum(i + 1, j + 1));
+            weights.push((brightest - floor).max(0.0) * band);
+        }
+    }
+    weights
+}
+
+/// The mean over the sphere of the amount by which the radiance's mean over RGB exceeds `floor`
+/// (0 or more; with 0 the mean radiance), W m⁻² sr⁻¹: each texel weighted by the solid angle
+/// of the rows around it.
+fn mean_above(texels: &[Vec3], width: u32, height: u32, floor: f32) -> f32 {
+    let (w, h) = (width as usize, height as usize);
+    let theta = |i: usize| PI * i as f32 / (h - 1) as f32;
+    let mut sum = 0.0_f64;
+    let mut solid_angle = 0.0_f64;
+    for i in 0..h {
+        let (lo, hi) = (theta(i.saturating_sub(1)), theta((i + 1).min(h - 1)));
+        let band = f64::from((0.5 * (lo + theta(i))).cos() - (0.5 * (theta(i) + hi)).cos());
+        for texel in &texels[i * w..(i + 1) * w] {
+            sum += f64::from((mean_rgb(*texel) - floor).max(0.0)) * band;
+            solid_angle += band;
+        }
+    }
+    (sum / solid_angle) as f32
 }
 
 impl Emitter for EnvironmentMap {
@@ -269,9 +333,10 @@ impl Emitter for EnvironmentMap {
         self.pdf_li(w)
     }
 
-    /// π times the mean radiance over the sphere.
+    /// π times the mean over the sphere of the radiance sampled (of its excess over the mean
+    /// for a [compensated](EnvironmentMap::compensated) map).
     fn irradiance_estimate(&self, _p: Vec3, _n: Vec3) -> f32 {
-        PI * self.mean_radiance()
+        PI * self.sampled_radiance
     }
 
     fn power(&self) -> f32 {

@@ -267,13 +267,28 @@ macro_rules! light_set {
 
 impl Light {
     /// Whether light sampling leaves this light to BSDF samples where they continue a path and
-    /// MIS weighs them: a constant environment, whose radiance is the same from every
-    /// direction, so a BSDF sample already follows the whole integrand but the visibility,
-    /// while its light samples are uniform over the sphere (half of them below the surface)
-    /// and take light choices and shadow rays from the other lights (pbrt-v4's path tracer
-    /// does the same).
+    /// MIS weighs them: a constant environment (or a map with nothing above its mean), whose
+    /// radiance is the same from every direction, so a BSDF sample already follows the whole
+    /// integrand but the visibility, while its light samples are uniform over the sphere (half
+    /// of them below the surface) and take light choices and shadow rays from the other lights
+    /// (pbrt-v4's path tracer does the same).
     pub fn left_to_bsdf_samples(&self) -> bool {
-        matches!(self, Light::Environment(_))
+        match self {
+            Light::Environment(_) => true,
+            Light::EnvironmentMap(map) => !map.has_compensated(),
+            _ => false,
+        }
+    }
+
+    /// The light as light sampling samples it where BSDF samples continue a path and MIS weighs
+    /// them, where that differs from the light itself: an environment map's
+    /// [compensated](EnvironmentMap::compensated) copy. `None` for every other light, and for
+    /// those [left to BSDF samples](Self::left_to_bsdf_samples).
+    pub fn compensated(&self) -> Option<Light> {
+        match self {
+            Light::EnvironmentMap(map) => map.compensated().map(Light::EnvironmentMap),
+            _ => None,
+        }
     }
 }
 

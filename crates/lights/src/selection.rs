@@ -52,7 +52,15 @@ impl LightSelector {
     /// selector). Falls back to the weights alone when no light has positive finite power, and
     /// to uniform when they are all equal. `None` when no light has a positive weight.
     pub fn new(lights: &[Light], weights: &[f32], selection: LightSelection) -> Option<Self> {
-        debug_assert_eq!(lights.len(), weights.len());
+        let powers: Vec<f32> = lights.iter().map(Light::power).collect();
+        Self::with_powers(&powers, weights, selection)
+    }
+
+    /// [`Self::new`] for lights of power `powers` (W, mean over channels; parallel to
+    /// `weights`), where the power light sampling sees differs from [`Light::power`] (an
+    /// environment map sampled by its excess over its mean).
+    pub fn with_powers(powers: &[f32], weights: &[f32], selection: LightSelection) -> Option<Self> {
+        debug_assert_eq!(powers.len(), weights.len());
         let sampled: Box<[u32]> = (0..weights.len() as u32)
             .filter(|&i| weights[i as usize] > 0.0)
             .collect();
@@ -61,7 +69,7 @@ impl LightSelector {
         }
         let by_weight = || {
             let uniform = LightSelector::Uniform {
-                count: lights.len() as u32,
+                count: weights.len() as u32,
             };
             if weights.iter().all(|&w| w == weights[0]) {
                 uniform
@@ -75,10 +83,10 @@ impl LightSelector {
             LightSelection::All => LightSelector::Every { sampled },
             LightSelection::Uniform => by_weight(),
             LightSelection::Power | LightSelection::Ris { .. } => {
-                let powers: Vec<f32> = lights
+                let powers: Vec<f32> = powers
                     .iter()
                     .zip(weights)
-                    .map(|(light, &weight)| light.power() * weight)
+                    .map(|(&power, &weight)| power * weight)
                     .collect();
                 AliasTable::new(&powers)
                     .ok()

@@ -549,3 +549,21 @@ fn lights_of_weight_zero_are_never_selected() {
     let none = vec![0.0; lights.len()];
     assert!(LightSelector::new(&lights, &none, LightSelection::Power).is_none());
 }
+
+/// The compensated map (its excess over its mean, what light sampling under MIS samples)
+/// samples directions by the density it reports.
+#[test]
+fn compensated_environment_map_matches_pdf() {
+    let map = EnvironmentMap::new(16, 9, &sky_texels(), 1.5, Mat3::from_rotation_y(0.4), 2.0)
+        .expect("valid");
+    let light = Light::EnvironmentMap(map)
+        .compensated()
+        .expect("a sun above the mean");
+    assert_fits(
+        "compensated environment map",
+        &light,
+        Vec3::new(1.0, 2.0, -3.0),
+        |wi| light.pdf_li_environment(wi),
+        &config(13, 1_000_000, 64),
+    );
+}

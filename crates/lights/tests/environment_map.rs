@@ -189,6 +189,61 @@ fn constant_map_is_a_constant_environment() {
     );
 }
 
+/// The compensated map (light sampling under MIS): only cells whose brightest texel exceeds
+/// the mean radiance are sampled, its density still integrates to one, its radiance is the
+/// map's, and its power is that of the excess. A constant map has none and is left to BSDF
+/// samples.
+#[test]
+fn the_compensated_map_samples_only_what_exceeds_the_mean() {
+    // A dim sky (0.1) with one bright texel (row 2, column 5): the mean lies between them.
+    let mut texels = vec![Vec3::splat(0.1); (W * H) as usize];
+    texels[(2 * W + 5) as usize] = Vec3::splat(50.0);
+    let env = map(&texels, 1.0, Mat3::IDENTITY);
+    let mean = env.mean_radiance();
+    assert!(mean > 0.1 && mean < 50.0, "mean {mean}");
+    let light = Light::EnvironmentMap(env.clone());
+    assert!(!light.left_to_bsdf_samples());
+    let compensated = light.compensated().expect("a texel above the mean");
+    // Away from the bright texel's four cells (rows 1–2, columns 4–5) the density is zero;
+    // on them positive; the radiance is the map's everywhere.
+    let (nu, nv) = (400, 400);
+    let mut integral = 0.0_f64;
+    for a in 0..nu {
+        for b in 0..nv {
+            let (u, v) = ((a as f32 + 0.5) / nu as f32, (b as f32 + 0.5) / nv as f32);
+            let d = direction(u, v);
+            let pdf = compensated.pdf_li_environment(d);
+            let (x, y) = (u * W as f32 - 0.5, v * (H - 1) as f32);
+            let near_sun = (4.0..6.0).contains(&x) && (1.0..3.0).contains(&y);
+            assert_eq!(pdf > 0.0, near_sun, "u {u}, v {v}: pdf {pdf}");
+            assert_eq!(
+                compensated.radiance_from_direction(d),
+                light.radiance_from_direction(d)
+            );
+            let jacobian = 2.0 * PI * PI * (v * PI).sin();
+            integral += f64::from(pdf * jacobian) / f64::from(nu * nv);
+        }
+    }
+    assert!(
+        (integral - 1.0).abs() < 2e-3,
+        "pdf integrates to {integral}"
+    );
+    assert!(
+        compensated.power() > 0.0 && compensated.power() < light.power(),
+        "{} against {}",
+        compensated.power(),
+        light.power()
+    );
+    // A constant map has nothing above its mean.
+    let constant = Light::EnvironmentMap(map(
+        &vec![Vec3::splat(0.3); (W * H) as usize],
+        1.0,
+        Mat3::IDENTITY,
+    ));
+    assert!(constant.compensated().is_none());
+    assert!(constant.left_to_bsdf_samples());
+}
+
 #[test]
 fn bad_images_are_errors() {
     let texels = labelled_texels();

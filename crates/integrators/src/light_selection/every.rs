@@ -25,9 +25,8 @@
 //! [`MAX_EVERY_LIGHT`] lights, kept when the pilot measures it more efficient than the
 //! power-proportional choice beyond noise (its extra shadow rays count in the cost).
 
-use super::{ChosenLight, evaluate};
+use super::{ChosenLight, SampledLights, evaluate};
 use glam::{Vec2, Vec3};
-use lights::Light;
 use world::SurfaceHit;
 
 /// The most lights for which `auto` tries sampling every light: beyond, the shadow rays cost
@@ -40,7 +39,7 @@ pub const MAX_EVERY_LIGHT: usize = 8;
 #[inline(always)]
 pub(super) fn sample_each(
     sampled: &[u32],
-    lights: &[Light],
+    lights: &SampledLights<'_>,
     surface: &SurfaceHit<'_>,
     wo: Vec3,
     u_point: Vec2,

@@ -33,7 +33,30 @@ use glam::{Vec2, Vec3};
 use lights::LightSelection;
 use lights::{Light, LightSample, LightSelector};
 use materials::Bsdf;
+use std::ops::Index;
 use world::SurfaceHit;
+
+/// The scene's lights as light sampling samples them: the world's, with one replaced by the
+/// copy light sampling uses instead ([`Light::compensated`]: an environment map under MIS).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SampledLights<'a> {
+    /// The world's lights.
+    pub lights: &'a [Light],
+    /// The index of the light replaced and its replacement.
+    pub replaced: Option<(usize, &'a Light)>,
+}
+
+impl Index<usize> for SampledLights<'_> {
+    type Output = Light;
+
+    #[inline(always)]
+    fn index(&self, index: usize) -> &Light {
+        match self.replaced {
+            Some((replaced, light)) if replaced == index => light,
+            _ => &self.lights[index],
+        }
+    }
+}
 
 /// A light sample chosen for a shadow ray, with the BSDF already evaluated towards it.
 #[derive(Clone, Copy, Debug)]
@@ -64,7 +87,7 @@ pub(crate) struct ChosenLight {
 pub(crate) fn sample_lights(
     mode: LightSelection,
     selector: &LightSelector,
-    lights: &[Light],
+    lights: &SampledLights<'_>,
     surface: &SurfaceHit<'_>,
     wo: Vec3,
     u_choice: Vec2,

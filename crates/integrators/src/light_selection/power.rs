@@ -17,9 +17,9 @@
 //! `mis` presets and `auto`'s base); uniform choice among several lights is one of `auto`'s
 //! trials.
 
-use super::{ChosenLight, evaluate};
+use super::{ChosenLight, SampledLights, evaluate};
 use glam::{Vec2, Vec3};
-use lights::{Light, LightSelector};
+use lights::LightSelector;
 use world::SurfaceHit;
 
 /// The light `selector`'s table picks with `u_choice`, and a point on it by `u_point`, seen
@@ -28,7 +28,7 @@ use world::SurfaceHit;
 #[inline(always)]
 pub(super) fn choose(
     selector: &LightSelector,
-    lights: &[Light],
+    lights: &SampledLights<'_>,
     surface: &SurfaceHit<'_>,
     wo: Vec3,
     u_choice: f32,

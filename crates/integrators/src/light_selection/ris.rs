@@ -19,7 +19,7 @@
 //! kept when the pilot measures it more efficient than power-proportional choice beyond noise
 //! (`manylights`: 1.6–1.7×); the `ris` preset always uses it, with four candidates.
 
-use super::{ChosenLight, evaluate};
+use super::{ChosenLight, SampledLights, evaluate};
 use glam::{Vec2, Vec3};
 use lights::{Light, LightSelector};
 use materials::BsdfFlags;
@@ -60,7 +60,7 @@ fn stratum(u: f32, k: u32, count: u32) -> f32 {
 pub(super) fn choose(
     count: u32,
     source: &LightSelector,
-    lights: &[Light],
+    lights: &SampledLights<'_>,
     surface: &SurfaceHit<'_>,
     wo: Vec3,
     u_choice: Vec2,

@@ -13,10 +13,11 @@
 //! [`DirectSamples`] (Mitsuba's `direct` integrator) the first vertex draws the light numbers once
 //! per light sample, then the BSDF numbers once per BSDF sample, and nothing else is drawn.
 
+use crate::light_selection::SampledLights;
 use crate::path_reuse::ReusablePath;
 use crate::settings::{DirectSamples, Mis, PathSettings};
 use glam::Vec3;
-use lights::{LightSelection, LightSelector};
+use lights::{Light, LightSelection, LightSelector};
 use sampling::Sampler;
 use world::{BsdfSlot, CameraRay, RayTally, World};
 
@@ -25,6 +26,10 @@ use world::{BsdfSlot, CameraRay, RayTally, World};
 pub struct PathIntegrator {
     pub(super) settings: PathSettings,
     pub(super) selector: Option<LightSelector>,
+    /// The light that light sampling samples in a form of its own, by index, and that form
+    /// ([`lights::Light::compensated`]: an environment map where MIS weighs BSDF samples).
+    /// (Boxed: a light is large, and the integrator is moved by value.)
+    compensated: Option<(usize, Box<Light>)>,
     /// Whether light sampling draws a number to choose among more than one light.
     pub(super) draws_light_choice: bool,
     /// Whether a light sample draws the number its RIS reservoir chooses with (RIS with more
@@ -41,19 +46,49 @@ impl PathIntegrator {
         if world.has_motion() {
             settings.path_reuse = None;
         }
-        let selector = LightSelector::new(
-            world.lights(),
-            &sampling_weights(world, &settings),
+        let bsdf_finds_lights = bsdf_finds_lights(&settings);
+        // An environment map under MIS is sampled by its excess over its mean.
+        let compensated = world
+            .lights()
+            .iter()
+            .enumerate()
+            .filter(|_| bsdf_finds_lights)
+            .find_map(|(index, light)| Some((index, Box::new(light.compensated()?))));
+        let powers: Vec<f32> = world
+            .lights()
+            .iter()
+            .enumerate()
+            .map(|(index, light)| match &compensated {
+                Some((replaced, copy)) if *replaced == index => copy.power(),
+                _ => light.power(),
+            })
+            .collect();
+        let selector = LightSelector::with_powers(
+            &powers,
+            &sampling_weights(world, bsdf_finds_lights),
             settings.light_selection,
         );
         let choices = selector.as_ref().is_some_and(|s| s.sampled().len() > 1);
         Self {
             settings,
             selector,
+            compensated,
             draws_light_choice: choices && settings.light_selection != LightSelection::All,
             draws_reservoir_choice: choices
                 && matches!(settings.light_selection, LightSelection::Ris { .. }),
             draws_lobe_choice: world.has_lobe_choice(),
+        }
+    }
+
+    /// The lights of `world` as light sampling samples them, and as MIS weighs emission by.
+    #[inline(always)]
+    pub(crate) fn sampled_lights<'a>(&'a self, world: &'a World) -> SampledLights<'a> {
+        SampledLights {
+            lights: world.lights(),
+            replaced: self
+                .compensated
+                .as_ref()
+                .map(|(index, light)| (*index, &**light)),
         }
     }
 
@@ -131,20 +166,25 @@ impl PathIntegrator {
 /// [left to BSDF samples](lights::Light::left_to_bsdf_samples) where the walk's BSDF samples find
 /// emission and MIS weighs them. Emission that no light sample could have found counts in
 /// full, so the estimate stays unbiased.
-fn sampling_weights(world: &World, settings: &PathSettings) -> Vec<f32> {
-    let bsdf_finds_it = settings.sample_bsdf
-        && settings.mis != Mis::Off
-        && settings.direct_samples.is_none_or(|d| d.bsdf > 0);
+fn sampling_weights(world: &World, bsdf_finds_lights: bool) -> Vec<f32> {
     world
         .lights()
         .iter()
         .zip(world.light_weights())
         .map(|(light, &weight)| {
-            if bsdf_finds_it && light.left_to_bsdf_samples() {
+            if bsdf_finds_lights && light.left_to_bsdf_samples() {
                 0.0
             } else {
                 weight
             }
         })
         .collect()
+}
+
+/// Whether BSDF samples continue the walk and MIS weighs the emission they find against light
+/// samples: then a light may be left to them, or sampled in a form of its own.
+fn bsdf_finds_lights(settings: &PathSettings) -> bool {
+    settings.sample_bsdf
+        && settings.mis != Mis::Off
+        && settings.direct_samples.is_none_or(|d| d.bsdf > 0)
 }

@@ -24,7 +24,8 @@
 //! The light strategy's density per steradian includes the light selection probability. A light
 //! that light sampling never chooses (one [left to BSDF
 //! samples](lights::Light::left_to_bsdf_samples)) has density 0 there, so the BSDF sample that
-//! finds it gets weight 1.
+//! finds it gets weight 1; an environment map's density is its [compensated
+//! copy's](lights::Light::compensated), the form light sampling samples it in.
 //!
 //! **When `auto` uses it.** The power heuristic wherever lights are sampled and some light can
 //! be hit by a BSDF sample (an area light or an environment); off where every light is a delta
@@ -82,9 +83,9 @@ impl PathIntegrator {
             return Vec3::ZERO;
         }
         let weight = self.emission_weight(previous, world.environment(), counts, || {
-            world
-                .environment()
-                .map_or(0.0, |e| world.lights()[e as usize].pdf_li_environment(dir))
+            world.environment().map_or(0.0, |e| {
+                self.sampled_lights(world)[e as usize].pdf_li_environment(dir)
+            })
         });
         throughput * background * weight
     }
@@ -111,7 +112,7 @@ impl PathIntegrator {
             return Vec3::ZERO;
         }
         let weight = self.emission_weight(previous, Some(light), counts, || {
-            world.lights()[light as usize].pdf_li_surface(
+            self.sampled_lights(world)[light as usize].pdf_li_surface(
                 previous.p,
                 surface.hit.p,
                 surface.hit.ng,

@@ -137,7 +137,7 @@ impl PathIntegrator {
         sample_lights(
             mode,
             selector,
-            world.lights(),
+            &self.sampled_lights(world),
             surface,
             wo,
             u_choice,
