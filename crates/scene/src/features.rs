@@ -15,7 +15,8 @@ pub struct SceneFeatures {
     /// True when the scene has an environment emitter.
     pub has_environment: bool,
     /// Lights that light sampling leaves to BSDF samples under MIS
-    /// ([`Light::left_to_bsdf_samples`]: a constant environment).
+    /// ([`Light::left_to_bsdf_samples`]: a constant environment, or a map with nothing above
+    /// its mean).
     pub lights_left_to_bsdf: usize,
     /// True when some material has a glossy lobe ([`BsdfFlags::GLOSSY`]: a rough conductor).
     pub has_glossy_bsdfs: bool,

@@ -46,6 +46,17 @@ pub(crate) struct SampledLights<'a> {
     pub replaced: Option<(usize, &'a Light)>,
 }
 
+impl<'a> SampledLights<'a> {
+    /// `lights` with light `index` replaced by `light`, for `replaced` = `(index, light)`.
+    #[inline(always)]
+    pub fn new(lights: &'a [Light], replaced: &'a Option<(usize, Box<Light>)>) -> Self {
+        Self {
+            lights,
+            replaced: replaced.as_ref().map(|(index, light)| (*index, &**light)),
+        }
+    }
+}
+
 impl Index<usize> for SampledLights<'_> {
     type Output = Light;
 

@@ -54,14 +54,9 @@ impl PathIntegrator {
             .enumerate()
             .filter(|_| bsdf_finds_lights)
             .find_map(|(index, light)| Some((index, Box::new(light.compensated()?))));
-        let powers: Vec<f32> = world
-            .lights()
-            .iter()
-            .enumerate()
-            .map(|(index, light)| match &compensated {
-                Some((replaced, copy)) if *replaced == index => copy.power(),
-                _ => light.power(),
-            })
+        let sampled = SampledLights::new(world.lights(), &compensated);
+        let powers: Vec<f32> = (0..world.lights().len())
+            .map(|index| sampled[index].power())
             .collect();
         let selector = LightSelector::with_powers(
             &powers,
@@ -83,13 +78,7 @@ impl PathIntegrator {
     /// The lights of `world` as light sampling samples them, and as MIS weighs emission by.
     #[inline(always)]
     pub(crate) fn sampled_lights<'a>(&'a self, world: &'a World) -> SampledLights<'a> {
-        SampledLights {
-            lights: world.lights(),
-            replaced: self
-                .compensated
-                .as_ref()
-                .map(|(index, light)| (*index, &**light)),
-        }
+        SampledLights::new(world.lights(), &self.compensated)
     }
 
     /// The settings this integrator runs with.
