@@ -8,11 +8,13 @@
 //! throw on to other surfaces, dominate the noise of scenes with glass. Traced from the light,
 //! the same paths are found by following the emitted light and joining each non-delta vertex to
 //! the camera with one shadow ray (pbrt-v4's `LightPathIntegrator`, restricted to these paths).
-//! Path space is split, not weighted: with [`crate::PathSettings::light_tracing`] on, the path
-//! tracer drops emission it meets by a delta bounce on a path whose first vertex after the
-//! camera is non-delta (k ≥ 3 vertices), and this tracer contributes exactly those paths (its
-//! light leaves the light's first hit by a delta lobe and reaches the camera from a non-delta
-//! vertex), so the sum is unbiased.
+//! With [`crate::PathSettings::light_tracing`] on, the two share these paths (a first vertex
+//! after the camera left by a non-delta lobe, emission met by a delta bounce, k ≥ 3 vertices),
+//! which this tracer contributes (its light leaves the light's first hit by a delta lobe and
+//! reaches the camera from a non-delta vertex): one bounce from the camera (camera → x₁ → delta
+//! chain → light) each path is weighted between the two by MIS (`caustic_mis`), so that a
+//! glossy x₁ stays mostly the path tracer's; longer paths are split, not weighted: the path
+//! tracer drops them. Either way the sum is unbiased.
 //!
 //! **The formula** (the technique goes beyond the lecture). A light path carries
 //! β = Le · |cos θ_light| / (P(light) · p_A · p_ω) · Π f · |cos θ| / pdf over its bounces; a
@@ -36,26 +38,27 @@
 //! thin-lens camera), the BSDF lobe (1D, when some material chooses a lobe) and direction (2D),
 //! and roulette (1D, with roulette from its start depth on).
 
+use crate::caustic_mis::{LightPathStarts, camera_side, light_tracer_weight};
 use crate::optional_draw::next_1d_if;
 use crate::{PathSettings, RussianRoulette};
 use geometry::Ray;
 use glam::{Vec2, Vec3};
 use materials::BsdfFlags;
 use sampling::Sampler;
-use sampling::distribution::CdfTable;
 use world::{BsdfSlot, CameraConnection, CameraTraits, RayTally, SurfaceHit, World};
 
 /// Traces light paths for caustics (see the module documentation).
 #[derive(Clone, Debug)]
 pub struct LightTracer {
-    /// Indices into [`World::lights`] of the area lights, the only lights traced.
-    lights: Vec<u32>,
-    /// Power-proportional choice among `lights`.
-    selection: CdfTable,
+    /// The choice of the area light each path starts on.
+    starts: LightPathStarts,
     /// Longest path, in vertices after the camera (Mitsuba's `max_depth`).
     max_depth: u32,
     /// Roulette on the light paths' bounces, as the path tracer's.
     russian_roulette: Option<RussianRoulette>,
+    /// Whether caustics one bounce from the camera are weighted against the path tracer's
+    /// BSDF samples (`caustic_mis`): with BSDF sampling on.
+    weighs_caustics: bool,
     /// Whether some material draws a number to choose its lobe.
     draws_lobe_choice: bool,
     /// Whether the camera has an aperture, so each camera connection draws a point on it.
@@ -65,32 +68,23 @@ pub struct LightTracer {
 }
 
 impl LightTracer {
-    /// The tracer for `world` with the path tracer's `settings` (depth and roulette), for a
-    /// camera with an aperture or a pinhole, moving or not (`camera`); `None` when the world has no
-    /// area light with power, or when `settings` hide emitters: the camera then sees through area
-    /// emitters, which its connections from light paths do not (the path tracer keeps those paths).
-    /// Also `None` when `settings` skip null vertices in a world with null lobes: the tracer
-    /// counts every pass through one as a vertex.
+    /// The tracer for `world` with the path tracer's `settings` (depth, roulette, BSDF
+    /// sampling), for a camera with an aperture or a pinhole, moving or not (`camera`); `None`
+    /// when the world has no area light with power, or when `settings` hide emitters: the
+    /// camera then sees through area emitters, which its connections from light paths do not
+    /// (the path tracer keeps those paths). Also `None` when `settings` skip null vertices in a
+    /// world with null lobes: the tracer counts every pass through one as a vertex.
     pub fn new(world: &World, settings: &PathSettings, camera: CameraTraits) -> Option<Self> {
         if settings.hide_emitters || (settings.skip_null_vertices && world.has_null_lobes()) {
             return None;
         }
-        let lights: Vec<u32> = (0..world.lights().len() as u32)
-            .filter(|&i| world.lights()[i as usize].is_area())
-            .collect();
-        // Chosen by power times selection weight, as light sampling chooses them.
-        let powers: Vec<f32> = lights
-            .iter()
-            .map(|&i| world.lights()[i as usize].power() * world.light_weights()[i as usize])
-            .collect();
-        let selection = CdfTable::new(&powers).ok()?;
         Some(Self {
-            lights,
-            selection,
+            starts: LightPathStarts::new(world)?,
             max_depth: settings
                 .max_depth
                 .unwrap_or(crate::reference::UNBOUNDED_DEPTH_CAP),
             russian_roulette: settings.russian_roulette,
+            weighs_caustics: settings.sample_bsdf,
             draws_lobe_choice: world.has_lobe_choice(),
             draws_lens: camera.has_lens,
             draws_time: world.has_motion() || camera.moves,
@@ -113,17 +107,24 @@ impl LightTracer {
         } else {
             0.0
         };
-        let u_choice = next_1d_if(sampler, self.lights.len() > 1);
+        let u_choice = next_1d_if(sampler, self.starts.chooses());
         let u_point = sampler.next_2d();
         let u_dir = sampler.next_2d();
-        let (chosen, pmf, _) = self.selection.sample(u_choice);
-        let light = &world.lights()[self.lights[chosen] as usize];
+        let (chosen, pmf) = self.starts.sample(u_choice);
+        let light = &world.lights()[chosen as usize];
         let Some(emitted) = light.sample_emission(u_point, u_dir, time) else {
             return;
         };
         // The light the path carries is `emitted_weight * throughput`.
         let emitted_weight = emitted.weight / pmf;
         let mut throughput = Vec3::ONE;
+        // While every bounce so far was by a delta lobe, a connection makes a caustic path one
+        // bounce from the camera, weighted against the path tracer's (`caustic_mis`) with the
+        // light side of the densities' ratio.
+        let light_side = self
+            .weighs_caustics
+            .then(|| self.starts.density_at(world, chosen, emitted.n, time));
+        let mut through_deltas = true;
         let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.p_error, emitted.dir).at_time(time);
         // The vertex about to be found, counted from the light (1 = the first hit). A connection
         // at vertex j makes a path of j + 1 vertices after the camera (j of them, and the light).
@@ -145,7 +146,17 @@ impl LightTracer {
                 && let Some(camera) = connect(surface.hit.p, u_lens, time)
             {
                 let weight = emitted_weight * throughput;
-                connect_to_camera(world, &surface, towards_light, camera, tally, weight, splat);
+                let light_side = light_side.filter(|_| through_deltas);
+                connect_to_camera(
+                    world,
+                    &surface,
+                    towards_light,
+                    camera,
+                    light_side,
+                    tally,
+                    weight,
+                    splat,
+                );
             }
             if vertex + 1 >= self.max_depth {
                 return;
@@ -178,6 +189,7 @@ impl LightTracer {
                 * shading_normal_correction(wo.z, bounce.wi.z, ng, towards_light, outgoing);
             let factor = bounce.f * (bounce.wi.z.abs() / bounce.pdf_solid_angle * adjoint);
             throughput *= factor;
+            through_deltas &= bounce.is_delta;
             if let Some(roulette) = self.russian_roulette
                 && vertex >= roulette.start_depth
             {
@@ -200,11 +212,16 @@ impl LightTracer {
 
 /// Joins the non-delta vertex `surface`, reached by light arriving from `towards_light`, to the
 /// camera and splats the path's contribution (`weight` before this vertex) if nothing blocks it.
+/// With `light_side`, the path is a caustic one bounce from the camera that the path tracer
+/// samples too, and the contribution takes the light tracer's weight against it
+/// (`caustic_mis`).
+#[allow(clippy::too_many_arguments)]
 fn connect_to_camera(
     world: &World,
     surface: &SurfaceHit<'_>,
     towards_light: Vec3,
     camera: CameraConnection,
+    light_side: Option<f32>,
     tally: &mut impl RayTally,
     weight: Vec3,
     splat: &mut impl FnMut(Vec2, Vec3),
@@ -212,11 +229,21 @@ fn connect_to_camera(
     let wo = surface.frame.to_local(towards_light);
     let to_camera = (camera.target - surface.hit.p).normalize_or_zero();
     let wc = surface.frame.to_local(to_camera);
-    // Radiance leaves towards the camera; light arrives from the light's side.
-    let f = surface.bsdf.eval(wc, wo);
+    // Radiance leaves towards the camera; light arrives from the light's side. The path tracer
+    // would have sampled the light's side from the camera's.
+    let (f, pdf_bsdf) = match light_side {
+        Some(_) => surface.bsdf.eval_with_pdf(wc, wo),
+        None => (surface.bsdf.eval(wc, wo), 0.0),
+    };
     let ng = surface.hit.ng;
     let cos_light_geometric = ng.dot(towards_light).abs();
+    let cos_camera = ng.dot(to_camera).abs();
+    let mis = light_side.map_or(1.0, |light_side| {
+        let camera_side = camera_side(camera.importance, cos_camera, pdf_bsdf, wo.z.abs());
+        light_tracer_weight(light_side, camera_side)
+    });
     if f == Vec3::ZERO
+        || mis == 0.0
         || cos_light_geometric <= 0.0
         || !world.unoccluded(&surface.hit, camera.target, tally)
     {
@@ -224,8 +251,11 @@ fn connect_to_camera(
     }
     // The path tracer's measurement uses the shading normal's cosine towards the light and the
     // geometric one towards the camera (its ray's hit).
-    let cosines = wo.z.abs() * ng.dot(to_camera).abs() / cos_light_geometric;
-    splat(camera.film, weight * f * (cosines * camera.importance));
+    let cosines = wo.z.abs() * cos_camera / cos_light_geometric;
+    splat(
+        camera.film,
+        weight * f * (cosines * camera.importance * mis),
+    );
 }
 
 /// |n_s · wo| |n_g · wi| / (|n_g · wo| |n_s · wi|) for light arriving from `wo` and leaving along

@@ -64,7 +64,9 @@ pub fn radiance(
     let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
     let mut radiance = Vec3::ZERO;
     let mut throughput = Vec3::ONE;
-    let CameraRay { mut ray, mut t_max } = camera_ray;
+    let CameraRay {
+        mut ray, mut t_max, ..
+    } = camera_ray;
     // Whether every bounce so far was by a delta lobe: emission found next is seen by the shading
     // normal, as the path tracer sees what neither light sampling nor light tracing reaches.
     let mut seen_through_delta = true;
@@ -75,7 +77,15 @@ pub fn radiance(
     loop {
         let hidden = depth == 1 && settings.hide_emitters;
         let found = if hidden {
-            world.intersect_past_emitters(&CameraRay { ray, t_max }, counters, &mut slot)
+            world.intersect_past_emitters(
+                &CameraRay {
+                    ray,
+                    t_max,
+                    ..camera_ray
+                },
+                counters,
+                &mut slot,
+            )
         } else {
             world.intersect_within(&ray, t_max, counters, &mut slot)
         };

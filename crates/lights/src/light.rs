@@ -59,6 +59,12 @@ pub(crate) trait Emitter {
         0.0
     }
 
+    /// [`Light::pdf_emission_area`].
+    #[inline]
+    fn pdf_emission_area(&self, _n_light: Vec3, _time: f32) -> f32 {
+        0.0
+    }
+
     /// [`Light::bounding_sphere`].
     fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
         None
@@ -194,6 +200,17 @@ macro_rules! light_set {
             pub fn pdf_li_environment(&self, w: Vec3) -> f32 {
                 match self {
                     $(Self::$variant(l) => Emitter::pdf_li_environment(l, w),)*
+                }
+            }
+
+            /// Density per unit area (world units⁻²) with which [`Self::sample_emission`] at
+            /// `time` picks a point of the light's surface whose geometric normal is `n_light`:
+            /// 1 / area, as it picks points uniformly by area. Zero for lights without a
+            /// surface.
+            #[inline]
+            pub fn pdf_emission_area(&self, n_light: Vec3, time: f32) -> f32 {
+                match self {
+                    $(Self::$variant(l) => Emitter::pdf_emission_area(l, n_light, time),)*
                 }
             }
 

@@ -173,6 +173,11 @@ impl Emitter for MeshAreaLight {
         self.pdf_li(p, p_light, n_light)
     }
 
+    #[inline]
+    fn pdf_emission_area(&self, _n_light: Vec3, _time: f32) -> f32 {
+        1.0 / self.total_area
+    }
+
     fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
         Some(self.bounds)
     }

@@ -156,6 +156,15 @@ impl Emitter for MovingLight {
         self.pdf_li(p, p_light, n_light, time)
     }
 
+    #[inline]
+    fn pdf_emission_area(&self, n_light: Vec3, time: f32) -> f32 {
+        let local = match &self.local {
+            LocalLight::Mesh(l) => 1.0 / l.area(),
+            LocalLight::Sphere(l) => l.pdf_area(),
+        };
+        local / self.motion.at(time).area_scale(n_light)
+    }
+
     fn bounding_sphere(&self) -> Option<(Vec3, f32)> {
         Some(self.bounds)
     }

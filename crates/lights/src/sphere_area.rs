@@ -156,7 +156,7 @@ impl SphereAreaLight {
     }
 
     /// Density per unit area of a point uniform on the sphere: 1 / (4π r²).
-    fn pdf_area(&self) -> f32 {
+    pub fn pdf_area(&self) -> f32 {
         uniform_sphere_pdf() / (self.radius * self.radius)
     }
 
@@ -187,6 +187,11 @@ impl Emitter for SphereAreaLight {
     #[inline]
     fn pdf_li_surface(&self, p: Vec3, p_light: Vec3, n_light: Vec3, _time: f32) -> f32 {
         self.pdf_li(p, p_light, n_light)
+    }
+
+    #[inline]
+    fn pdf_emission_area(&self, _n_light: Vec3, _time: f32) -> f32 {
+        self.pdf_area()
     }
 
     fn bounding_sphere(&self) -> Option<(Vec3, f32)> {

@@ -101,3 +101,67 @@ fn sphere_emission_leaves_the_emitting_side() {
         );
     }
 }
+
+/// `pdf_emission_area` is the density the emission samples are weighted by: for every sample,
+/// weight = Lₑ · π / pdf_area (the light path's MIS weight against the path tracer relies on
+/// it). Checked on a mesh, a sphere, and both stretching and turning during the shutter, whose
+/// world-space density changes with time and, for the stretched sphere, with the point.
+#[test]
+fn emission_area_density_is_the_one_samples_are_weighted_by() {
+    use geometry::{Aabb, AnimatedTransform, Motion};
+    use glam::{DMat4, DQuat, DVec3};
+    use lights::MovingLight;
+
+    let radiance = Vec3::new(2.0, 1.0, 0.5);
+    let triangle = [
+        Vec3::ZERO,
+        Vec3::new(1.5, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    ];
+    let mesh = MeshAreaLight::new(vec![triangle], radiance).expect("has area");
+    let sphere = SphereAreaLight {
+        center: Vec3::new(0.5, 0.0, 0.0),
+        radius: 0.5,
+        flip_normals: false,
+        radiance,
+    };
+    let motion = Motion::new(
+        AnimatedTransform::new(&[
+            (0.0, DMat4::IDENTITY),
+            (
+                1.0,
+                DMat4::from_scale_rotation_translation(
+                    DVec3::new(3.0, 0.5, 1.0),
+                    DQuat::from_rotation_y(0.7),
+                    DVec3::new(1.0, 2.0, 0.0),
+                ),
+            ),
+        ])
+        .expect("valid keyframes"),
+        [0.0, 1.0],
+    );
+    let bounds = Aabb::new(Vec3::new(0.0, -0.5, -0.5), Vec3::new(1.5, 1.0, 0.5));
+    let lights = [
+        Light::Mesh(mesh.clone()),
+        Light::Sphere(sphere),
+        Light::Moving(MovingLight::new(Light::Mesh(mesh), motion.clone(), &bounds).expect("area")),
+        Light::Moving(MovingLight::new(Light::Sphere(sphere), motion, &bounds).expect("area")),
+    ];
+    let mut rng = Rng::new(SEED);
+    for light in &lights {
+        for i in 0..1000 {
+            let time = rng.next_f32();
+            let s = light
+                .sample_emission(u2(&mut rng), u2(&mut rng), time)
+                .unwrap_or_else(|| panic!("seed {SEED}, sample {i}: no emission"));
+            let density = light.pdf_emission_area(s.n, time);
+            let from_weight = PI * radiance.x / s.weight.x;
+            assert!(
+                (density / from_weight - 1.0).abs() < 1e-4,
+                "seed {SEED}, {}, sample {i} at time {time}: density {density}, the weight's \
+                 {from_weight}",
+                light.kind()
+            );
+        }
+    }
+}

@@ -14,9 +14,9 @@
 //! [`SCENE_ALPHA`] (0.01) per scene version over every comparison its test makes (Bonferroni
 //! over at most [`MAX_COMPARISONS`], so [`ALPHA`] ≈ 4.2e-4 per comparison of a configuration
 //! with the oracle), a third of that per level (Bonferroni), Šidák's correction within a level.
-//! Every test must pass. Over the suite's 23 scene versions, a new realisation of every sample
+//! Every test must pass. Over the suite's 24 scene versions, a new realisation of every sample
 //! (a change of seeds or of the dimension order) fails a correct renderer somewhere with
-//! probability at most 1 − 0.99²³ ≈ 21%; at 0.01 per comparison (the first version of this
+//! probability at most 1 − 0.99²⁴ ≈ 21%; at 0.01 per comparison (the first version of this
 //! test) it was expected to fail about three of its ~340 comparisons.
 //!
 //! **Configurations.** Every switch of the path integrator on MIS (power heuristic,
@@ -342,6 +342,34 @@ const MOVING_GLASS: Version = Version {
     overrides: &[],
     max_depth: Some(6),
 };
+
+/// [`LARGE_LIGHT_GLASS`] with a rough gold floor (GGX, α 0.3) at `max_depth` 4: the glass and
+/// mirror spheres' caustics on the floor are found both by the path tracer's BSDF samples of
+/// the glossy floor and by light tracing, each path weighted between the two (`caustic_mis`)
+/// with weights well inside (0, 1), so that weights that do not sum to one show.
+#[test]
+fn caustics_on_a_rough_metal_floor() {
+    check_scene(
+        "cbox-glass-rough-floor",
+        Version {
+            replace: &[
+                LARGE_CEILING_LIGHT,
+                (
+                    r#"<translate y="-1"/>
+        </transform>
+        <ref id="white"/>"#,
+                    r#"<translate y="-1"/>
+        </transform>
+        <bsdf type="roughconductor"><string name="material" value="Au"/><float name="alpha" value="0.3"/></bsdf>"#,
+                ),
+            ],
+            max_depth: Some(4),
+            ..Version::file("cbox-glass.xml")
+        },
+        Budget::new(2048, 112, 4),
+        None,
+    );
+}
 
 /// `cbox-glass.xml` with a large ceiling light.
 const LARGE_LIGHT_GLASS: Version = Version {

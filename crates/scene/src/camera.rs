@@ -155,10 +155,14 @@ impl Camera {
         let near = origin_local + dir_local * (self.near_clip / dir_local.z);
         let origin = self.to_world.transform_point3(near);
         // From the near plane to the far one along the (rigidly transformed) direction.
-        let t_max = (self.far_clip - self.near_clip) * dir_local.length() / dir_local.z;
+        let length = dir_local.length();
+        let t_max = (self.far_clip - self.near_clip) * length / dir_local.z;
+        let cos_theta = dir_local.z / length;
         CameraRay {
             ray: Ray::new(origin, self.to_world.transform_vector3(dir_local)),
             t_max,
+            pdf_dir: 1.0 / (self.image_plane_area() * cos_theta.powi(3)),
+            eye: self.to_world.transform_point3(origin_local),
         }
     }
 
@@ -179,7 +183,17 @@ impl Camera {
                 self.to_world.transform_vector3(Vec3::Z),
             ),
             t_max: self.far_clip - self.near_clip,
+            pdf_dir: 0.0,
+            eye: self.to_world.transform_point3(local),
         }
+    }
+
+    /// Area of the rendered image's part of the image plane at unit distance: the whole plane's,
+    /// 4 tan(fov_x / 2) tan(fov_y / 2), times the share the rendered image (a crop window) takes.
+    /// One light path is traced per pixel sample of the rendered image, not of the film.
+    fn image_plane_area(&self) -> f32 {
+        let plane_area = 4.0 * self.tan_half_fov.x * self.tan_half_fov.y;
+        plane_area * self.crop_size.element_product() / self.resolution.element_product()
     }
 
     /// Where the world point `p` appears to this camera through the point of its aperture that
@@ -232,11 +246,7 @@ impl Camera {
         let eye = self.to_world.transform_point3(aperture);
         let distance_squared = (p - eye).length_squared();
         let cos_theta = to_p.z / to_p.length();
-        // The whole image plane at unit distance, and the share of it the rendered image takes:
-        // one light path is traced per pixel sample of the rendered image, not of the film.
-        let plane_area = 4.0 * self.tan_half_fov.x * self.tan_half_fov.y;
-        let rendered_share = self.crop_size.element_product() / self.resolution.element_product();
-        let importance = 1.0 / (plane_area * rendered_share * cos_theta.powi(3) * distance_squared);
+        let importance = 1.0 / (self.image_plane_area() * cos_theta.powi(3) * distance_squared);
         importance.is_finite().then(|| CameraConnection {
             film,
             target: self.to_world.transform_point3(near),
@@ -330,6 +340,43 @@ mod tests {
                 "{} against {film}",
                 connection.film
             );
+        }
+    }
+
+    /// The importance a camera ray reports at a point it reaches is the one the light tracer's
+    /// connection through the same aperture point gives (their MIS weights compare the two),
+    /// for a pinhole, a thin lens, and a crop window, off the view axis too.
+    #[test]
+    fn a_camera_rays_importance_is_its_connections() {
+        let pinhole = camera([0.0, 0.0]);
+        let lens = Camera {
+            lens: Some(ThinLens {
+                aperture_radius: 0.2,
+                focus_distance: 6.0,
+            }),
+            ..pinhole.clone()
+        };
+        let cropped = pinhole
+            .clone()
+            .cropped(UVec2::new(20, 10), UVec2::new(16, 12));
+        for (name, camera) in [("pinhole", pinhole), ("lens", lens), ("crop", cropped)] {
+            for (film, u_lens) in [
+                (Vec2::new(8.0, 6.0), Vec2::new(0.3, 0.9)),
+                (Vec2::new(0.5, 11.5), Vec2::new(0.8, 0.1)),
+                (Vec2::new(15.5, 0.5), Vec2::new(0.5, 0.5)),
+            ] {
+                let ray = camera.generate_ray(film, u_lens);
+                for t in [1.0, 4.0, 9.0] {
+                    let p = ray.ray.at(t);
+                    let connection = camera.connect(p, 0.0, u_lens).expect("p is in view");
+                    let ratio = ray.importance_at(p) / connection.importance;
+                    assert!(
+                        (ratio - 1.0).abs() < 1e-4,
+                        "{name}, film {film}, t {t}: the ray's importance is {ratio} times the \
+                         connection's"
+                    );
+                }
+            }
         }
     }
 

@@ -13,16 +13,33 @@ pub struct CameraRay {
     pub ray: Ray,
     /// Distance along the ray to the far clipping plane (world units; may be infinite).
     pub t_max: f32,
+    /// Density per steradian of the ray's direction among the rays of one camera sample in
+    /// every pixel of the rendered image: 1 / (A cos³θ), as in [`CameraConnection::importance`]
+    /// (sr⁻¹). Zero for a camera that light paths do not connect to (the orthographic one).
+    pub pdf_dir: f32,
+    /// The point of the aperture the ray passes through (world space; the pinhole without a
+    /// lens), where [`Self::importance_at`] measures distances from.
+    pub eye: Vec3,
 }
 
 impl CameraRay {
-    /// A camera ray that is not clipped.
+    /// A camera ray that is not clipped, from a camera that light paths do not connect to.
     #[inline]
     pub fn unbounded(ray: Ray) -> Self {
         Self {
             ray,
             t_max: f32::INFINITY,
+            pdf_dir: 0.0,
+            eye: ray.origin,
         }
+    }
+
+    /// The camera's importance at the point `p` on the ray, as [`CameraConnection::importance`]
+    /// gives it for a light path reaching `p` through the same aperture point:
+    /// 1 / (A cos³θ r²) (m⁻² sr⁻¹).
+    #[inline]
+    pub fn importance_at(&self, p: Vec3) -> f32 {
+        self.pdf_dir / (p - self.eye).length_squared()
     }
 }
 

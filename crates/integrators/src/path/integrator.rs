@@ -13,6 +13,7 @@
 //! [`DirectSamples`] (Mitsuba's `direct` integrator) the first vertex draws the light numbers once
 //! per light sample, then the BSDF numbers once per BSDF sample, and nothing else is drawn.
 
+use crate::caustic_mis::LightPathStarts;
 use crate::light_selection::SampledLights;
 use crate::path_reuse::ReusablePath;
 use crate::settings::{DirectSamples, Mis, PathSettings};
@@ -37,6 +38,9 @@ pub struct PathIntegrator {
     pub(super) draws_reservoir_choice: bool,
     /// Whether some material draws a number to choose its lobe.
     pub(super) draws_lobe_choice: bool,
+    /// With light tracing and BSDF sampling on, the light tracer's choice of the light its paths
+    /// start on, for the weights of caustics one bounce from the camera (`caustic_mis`).
+    pub(super) caustic_starts: Option<LightPathStarts>,
 }
 
 impl PathIntegrator {
@@ -72,6 +76,9 @@ impl PathIntegrator {
             draws_reservoir_choice: choices
                 && matches!(settings.light_selection, LightSelection::Ris { .. }),
             draws_lobe_choice: world.has_lobe_choice(),
+            caustic_starts: (settings.light_tracing && settings.sample_bsdf)
+                .then(|| LightPathStarts::new(world))
+                .flatten(),
         }
     }
 

@@ -21,6 +21,7 @@ mod state;
 
 pub use integrator::PathIntegrator;
 
+use crate::caustic_mis::light_tracer_weight;
 use crate::path_reuse::{ReusablePath, WalkSplit};
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use geometry::SpawnPoint;
@@ -28,7 +29,7 @@ use materials::BsdfFlags;
 use mis::ONE_EACH;
 use sampling::Sampler;
 use state::PathState;
-use world::{BsdfSlot, CameraRay, RayTally, World};
+use world::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World};
 
 impl PathIntegrator {
     /// The path walk behind [`Self::radiance`] and, with `REUSE`, [`Self::radiance_reusable`].
@@ -43,7 +44,9 @@ impl PathIntegrator {
     ) -> ReusablePath {
         let settings = &self.settings;
         let max_depth = settings.max_depth.unwrap_or(UNBOUNDED_DEPTH_CAP);
-        let CameraRay { mut ray, mut t_max } = camera_ray;
+        let CameraRay {
+            mut ray, mut t_max, ..
+        } = camera_ray;
         let mut path = PathState::at_camera(ray.origin);
         let mut split = WalkSplit::default();
         loop {
@@ -51,7 +54,15 @@ impl PathIntegrator {
             // first surface.
             let hidden = path.depth == 1 && settings.hide_emitters;
             let found = if hidden {
-                world.intersect_past_emitters(&CameraRay { ray, t_max }, counters, slot)
+                world.intersect_past_emitters(
+                    &CameraRay {
+                        ray,
+                        t_max,
+                        ..camera_ray
+                    },
+                    counters,
+                    slot,
+                )
             } else {
                 world.intersect_within(&ray, t_max, counters, slot)
             };
@@ -66,13 +77,23 @@ impl PathIntegrator {
                 }
                 break;
             };
-            let left_to_light_tracing = settings.light_tracing && path.caustic_chain;
-            if !(hidden || left_to_light_tracing) {
+            let share = if settings.light_tracing && path.caustic_chain {
+                self.caustic_share(world, surface, &path)
+            } else {
+                1.0
+            };
+            if !hidden && share > 0.0 {
                 let (previous, delta) = (&path.previous, path.seen_through_delta);
-                let throughput = path.throughput;
+                let throughput = path.throughput * share;
                 path.radiance += self.emission_found(
                     world, surface, ray.dir, previous, delta, ONE_EACH, throughput,
                 );
+            }
+            // The path tracer's side of the weights of caustics it shares with light tracing:
+            // the camera's importance at the first vertex.
+            if path.depth == 1 && self.caustic_starts.is_some() {
+                path.camera_side =
+                    camera_ray.importance_at(surface.hit.p) * surface.hit.ng.dot(ray.dir).abs();
             }
             // At the last vertex only a pass through a null lobe goes on.
             let last = path.depth == max_depth;
@@ -114,5 +135,19 @@ impl PathIntegrator {
             t_max = f32::INFINITY;
         }
         split.finish(path.radiance)
+    }
+
+    /// The path tracer's share of emission that ends a caustic chain (light tracing on): 1 − the
+    /// light tracer's weight for a caustic one bounce from the camera (`caustic_mis`), 0 for a
+    /// longer one, which is the light tracer's alone.
+    #[inline]
+    fn caustic_share(&self, world: &World, surface: &SurfaceHit<'_>, path: &PathState) -> f32 {
+        let (Some(starts), Some(light), true) =
+            (&self.caustic_starts, surface.light, path.through_deltas)
+        else {
+            return 0.0;
+        };
+        let light_side = starts.density_at(world, light, surface.hit.ng, surface.hit.time);
+        1.0 - light_tracer_weight(light_side, path.camera_side)
     }
 }

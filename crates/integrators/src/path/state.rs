@@ -27,8 +27,16 @@ pub(super) struct PathState {
     /// Whether the first vertex was left by a non-delta lobe.
     pub first_vertex_non_delta: bool,
     /// Whether the path's first vertex was left by a non-delta lobe and its last by a delta
-    /// one: emission it meets next is the light tracer's with `light_tracing` on.
+    /// one: emission it meets next is the light tracer's with `light_tracing` on, or, when
+    /// every bounce after the first was by a delta lobe (`through_deltas`), shared with it by
+    /// `caustic_mis`'s weights.
     pub caustic_chain: bool,
+    /// Whether every bounce after the first was by a delta lobe.
+    pub through_deltas: bool,
+    /// The path tracer's side of `caustic_mis`'s density ratio: at the first vertex the
+    /// camera's importance times |cos θ| towards the camera, from the first bounce on times
+    /// that bounce's pdf / |cos θ| (0 where light tracing does not share caustics).
+    pub camera_side: f32,
     /// The number of the vertex the ray is about to find: one more per bounce, not per pass
     /// through a null lobe with `skip_null_vertices`.
     pub depth: u32,
@@ -51,6 +59,8 @@ impl PathState {
             seen_through_delta: true,
             first_vertex_non_delta: false,
             caustic_chain: false,
+            through_deltas: true,
+            camera_side: 0.0,
             depth: 1,
         }
     }
@@ -63,8 +73,10 @@ impl PathState {
         self.seen_through_delta &= next.is_delta;
         if self.depth == 1 {
             self.first_vertex_non_delta = !next.is_delta;
+            self.camera_side *= next.pdf_solid_angle / next.wi.z.abs();
         } else {
             self.caustic_chain = self.first_vertex_non_delta && next.is_delta;
+            self.through_deltas &= next.is_delta;
         }
         self.previous = PreviousVertex {
             p,
