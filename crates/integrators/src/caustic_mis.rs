@@ -43,6 +43,48 @@ use sampling::distribution::CdfTable;
 use std::f32::consts::FRAC_1_PI;
 use world::World;
 
+/// How the path tracer counts emission that ends a caustic chain: a first vertex after the
+/// camera left by a non-delta lobe, then a delta bounce into a light (the paths the light tracer
+/// contributes).
+#[derive(Clone, Debug)]
+pub(crate) enum CausticPaths {
+    /// In full: no light tracer takes them.
+    Kept,
+    /// Not at all: a light tracer takes each whole (light tracing without BSDF sampling), or
+    /// `auto`'s pilot estimates their variance apart.
+    Left,
+    /// Shared with the light tracer: one bounce from the camera by the weights of this module,
+    /// longer ones left to it whole.
+    Shared(LightPathStarts),
+}
+
+impl CausticPaths {
+    /// The path tracer's share of the emission of `world`'s light `light` met at `hit` at the
+    /// end of a caustic chain: 1 − [`light_tracer_weight`] for a caustic one bounce from the
+    /// camera (`through_deltas`: every bounce after the first by a delta lobe; `camera_side`
+    /// as [`camera_side`] gives it for the path's first vertex), else 0 or 1 as the variant
+    /// says.
+    #[inline]
+    pub(crate) fn share(
+        &self,
+        world: &World,
+        light: u32,
+        hit: &geometry::Hit,
+        through_deltas: bool,
+        camera_side: f32,
+    ) -> f32 {
+        match self {
+            CausticPaths::Kept => 1.0,
+            CausticPaths::Left => 0.0,
+            CausticPaths::Shared(_) if !through_deltas => 0.0,
+            CausticPaths::Shared(starts) => {
+                let light_side = starts.density_at(world, light, hit.ng, hit.time);
+                1.0 - light_tracer_weight(light_side, camera_side)
+            }
+        }
+    }
+}
+
 /// The light tracer's choice of the light a path starts on: the area lights with power, by
 /// power times selection weight (as light sampling chooses them).
 #[derive(Clone, Debug)]
@@ -109,6 +151,16 @@ impl LightPathStarts {
 #[inline]
 pub(crate) fn camera_side(importance: f32, cos_camera: f32, pdf_bsdf: f32, cos_bsdf: f32) -> f32 {
     importance * cos_camera * pdf_bsdf / cos_bsdf
+}
+
+/// The ratio r = p_LT / p_PT of the light tracer's density of a caustic path to the path
+/// tracer's, from the two sides as [`light_tracer_weight`] takes them; 0 where either density is
+/// 0 or the ratio is not finite (the path tracer cannot find the path, or the light tracer can
+/// not start it).
+#[inline]
+pub(crate) fn density_ratio(light_side: f32, camera_side: f32) -> f32 {
+    let ratio = FRAC_1_PI * light_side / camera_side;
+    if ratio.is_finite() { ratio } else { 0.0 }
 }
 
 /// The light tracer's weight w_LT for a caustic path whose light side is `light_side` (from

@@ -15,7 +15,7 @@ mod settings;
 mod uniform_direction;
 
 pub use light_selection::every::MAX_EVERY_LIGHT;
-pub use light_tracer::LightTracer;
+pub use light_tracer::{CameraSplat, LightTracer};
 pub use path::PathIntegrator;
 pub use settings::{DirectSamples, Mis, PathReuse, PathSettings, RussianRoulette};
 

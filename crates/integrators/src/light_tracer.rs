@@ -38,7 +38,7 @@
 //! thin-lens camera), the BSDF lobe (1D, when some material chooses a lobe) and direction (2D),
 //! and roulette (1D, with roulette from its start depth on).
 
-use crate::caustic_mis::{LightPathStarts, camera_side, light_tracer_weight};
+use crate::caustic_mis::{LightPathStarts, camera_side, density_ratio, light_tracer_weight};
 use crate::optional_draw::next_1d_if;
 use crate::{PathSettings, RussianRoulette};
 use geometry::Ray;
@@ -46,6 +46,23 @@ use glam::{Vec2, Vec3};
 use materials::BsdfFlags;
 use sampling::Sampler;
 use world::{BsdfSlot, CameraConnection, CameraTraits, RayTally, SurfaceHit, World};
+
+/// One contribution of a light path to the camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraSplat {
+    /// Where the path reaches the film, pixels.
+    pub film: Vec2,
+    /// The contribution, MIS-weighted, in units of one pixel sample's radiance
+    /// (W m⁻² sr⁻¹, RGB).
+    pub value: Vec3,
+    /// The contribution before its MIS weight (same units).
+    pub unweighted: Vec3,
+    /// For a caustic one bounce from the camera, which the path tracer samples too, the ratio
+    /// r of the light tracer's density of the path to the path tracer's (`caustic_mis`): the
+    /// path tracer's own sample of the path is worth `unweighted · r`. Zero for other
+    /// connections.
+    pub path_tracer_ratio: f32,
+}
 
 /// Traces light paths for caustics (see the module documentation).
 #[derive(Clone, Debug)]
@@ -92,15 +109,14 @@ impl LightTracer {
     }
 
     /// Traces one light path with `sampler` (already started on its pixel sample) and hands each
-    /// contribution to the camera to `splat` as (film position in pixels, value), the value in
-    /// units of one pixel sample's radiance (W m⁻² sr⁻¹, RGB).
+    /// contribution to the camera to `splat`.
     pub fn trace(
         &self,
         world: &World,
         sampler: &mut impl Sampler,
         connect: &impl Fn(Vec3, Vec2, f32) -> Option<CameraConnection>,
         tally: &mut impl RayTally,
-        splat: &mut impl FnMut(Vec2, Vec3),
+        splat: &mut impl FnMut(CameraSplat),
     ) {
         let time = if self.draws_time {
             sampler.next_1d()
@@ -224,7 +240,7 @@ fn connect_to_camera(
     light_side: Option<f32>,
     tally: &mut impl RayTally,
     weight: Vec3,
-    splat: &mut impl FnMut(Vec2, Vec3),
+    splat: &mut impl FnMut(CameraSplat),
 ) {
     let wo = surface.frame.to_local(towards_light);
     let to_camera = (camera.target - surface.hit.p).normalize_or_zero();
@@ -238,9 +254,13 @@ fn connect_to_camera(
     let ng = surface.hit.ng;
     let cos_light_geometric = ng.dot(towards_light).abs();
     let cos_camera = ng.dot(to_camera).abs();
-    let mis = light_side.map_or(1.0, |light_side| {
+    // The light tracer's MIS weight, and the ratio r of its density to the path tracer's.
+    let (mis, ratio) = light_side.map_or((1.0, 0.0), |light_side| {
         let camera_side = camera_side(camera.importance, cos_camera, pdf_bsdf, wo.z.abs());
-        light_tracer_weight(light_side, camera_side)
+        (
+            light_tracer_weight(light_side, camera_side),
+            density_ratio(light_side, camera_side),
+        )
     });
     if f == Vec3::ZERO
         || mis == 0.0
@@ -252,10 +272,13 @@ fn connect_to_camera(
     // The path tracer's measurement uses the shading normal's cosine towards the light and the
     // geometric one towards the camera (its ray's hit).
     let cosines = wo.z.abs() * cos_camera / cos_light_geometric;
-    splat(
-        camera.film,
-        weight * f * (cosines * camera.importance * mis),
-    );
+    let unweighted = weight * f * (cosines * camera.importance);
+    splat(CameraSplat {
+        film: camera.film,
+        value: unweighted * mis,
+        unweighted,
+        path_tracer_ratio: ratio,
+    });
 }
 
 /// |n_s · wo| |n_g · wi| / (|n_g · wo| |n_s · wi|) for light arriving from `wo` and leaving along

@@ -25,6 +25,7 @@ pub mod adaptive;
 pub mod atomic_write;
 pub mod auto;
 pub mod budget;
+pub mod caustic_variance;
 pub mod cli;
 pub mod commands;
 pub mod diff;

@@ -3,6 +3,7 @@
 
 use crate::adaptive::{Allocation, MIN_PILOT_SPP, PixelCosts, pilot_seed, split_budget};
 use crate::auto::{self, AutoChoice, PilotRenders, TechniquePilot, Trials};
+use crate::caustic_variance::caustic_variance;
 use crate::driver::{
     BudgetError, LightPaths, MAX_BLOCK_PIXELS, RenderBudget, RenderOptions, RenderOutput,
     render_blocks_splatting,
@@ -12,7 +13,7 @@ use crate::image::Image;
 use crate::plan::{RenderPlan, Transport};
 use glam::{UVec2, Vec2, Vec3};
 use integrators::path_reuse::{self, ReusablePath};
-use integrators::{LightTracer, PathIntegrator, reference};
+use integrators::{CameraSplat, LightTracer, PathIntegrator, reference};
 use sampling::Sampler;
 use sampling::sampler::{PrefixSampler, SamplerModel, SamplerVisitor};
 use scene::{Camera, FilterDesc, RenderScene};
@@ -215,11 +216,16 @@ fn choose_techniques(
         rays.fetch_add(counters.rays, Ordering::Relaxed);
         shadow_rays.fetch_add(counters.shadow_rays, Ordering::Relaxed);
     };
+    // The light tracer of the base, for the caustics that candidates without it leave out.
+    let base_tracer = LightTracer::new(&scene.world, &base, camera.traits())
+        .filter(|_| base.light_tracing && camera.connects());
+    let mut caustics: Option<Vec<Vec3>> = None;
     let choice = auto::choose(base, &plan.trials, thumbnail, |settings| {
         let before = RayCounters {
             rays: rays.load(Ordering::Relaxed),
             shadow_rays: shadow_rays.load(Ordering::Relaxed),
         };
+        let caustics_left_out = !settings.light_tracing && base_tracer.is_some();
         let mut images = Vec::with_capacity(2);
         for replica in 0..2 {
             let pilot_plan = RenderPlan {
@@ -234,6 +240,7 @@ fn choose_techniques(
             };
             let context = Context {
                 view,
+                caustics_left_out,
                 ..Context::new(scene, &pilot_plan, filter, &quiet, &count)
             };
             images.push(render_sampled(&context)?.film.to_image());
@@ -242,11 +249,36 @@ fn choose_techniques(
             rays: rays.load(Ordering::Relaxed),
             shadow_rays: shadow_rays.load(Ordering::Relaxed),
         };
+        // The caustics' variance, from light paths, once for every candidate that leaves them
+        // out (not in a candidate's cost: the candidate traces none).
+        let caustics = match &base_tracer {
+            Some(tracer) if caustics_left_out => Some(
+                caustics
+                    .get_or_insert_with(|| {
+                        let mut probe = RayCounters::default();
+                        let variance = caustic_variance(
+                            &scene.world,
+                            tracer,
+                            &camera,
+                            thumbnail,
+                            filter,
+                            auto::pilot_seed(plan.seed, 3),
+                            auto::PILOT_SPP,
+                            &mut probe,
+                        );
+                        count(&mut probe);
+                        variance
+                    })
+                    .clone(),
+            ),
+            _ => None,
+        };
         let [a, b]: [Image; 2] = images.try_into().expect("two renders");
         Ok(PilotRenders {
             images: [a, b],
             rays: after.since(before),
             samples: 2 * u64::from(auto::PILOT_SPP) * u64::from(thumbnail.0 * thumbnail.1),
+            caustic_variance: caustics,
         })
     })?;
     Ok(Some(TechniquePilot {
@@ -361,7 +393,7 @@ const PATTERN_VERTICES: u32 = 2;
 fn render_sampled<T: RayTally + Default + Send>(
     context: &Context<'_, T>,
 ) -> Result<RenderOutput, BudgetError> {
-    let built = Integrators::new(context.scene, context.plan);
+    let built = Integrators::new(context.scene, context.plan, context.caustics_left_out);
     let prefix = built.pattern_dimensions(
         context.view.camera.has_lens(),
         context.scene.world.has_motion() || context.view.camera.moves(),
@@ -404,11 +436,20 @@ struct Integrators {
 }
 
 impl Integrators {
-    fn new(scene: &RenderScene, plan: &RenderPlan) -> Self {
+    /// The integrators `plan` names for `scene`; with `caustics_left_out`, the path tracer
+    /// without the paths light tracing contributes, and no light tracer (see
+    /// [`Context::caustics_left_out`]).
+    fn new(scene: &RenderScene, plan: &RenderPlan, caustics_left_out: bool) -> Self {
         let world = &scene.world;
         match plan.transport {
             Transport::Reference(settings) => Self {
                 integrator: BuiltTransport::Reference(settings),
+                light_tracer: None,
+            },
+            Transport::Path(settings) if caustics_left_out => Self {
+                integrator: BuiltTransport::Path(
+                    PathIntegrator::new(world, settings).leaving_caustics(),
+                ),
                 light_tracer: None,
             },
             Transport::Path(mut settings) => {
@@ -456,6 +497,10 @@ struct Context<'a, T> {
     /// For an adaptive-sampling pilot, where each sample's rays are added. A pilot estimates the
     /// noise of the path tracer's samples only, so it traces no light paths.
     pilot_costs: Option<&'a PixelCosts>,
+    /// For `auto`'s pilot of a candidate without light tracing where the base has it: the path
+    /// tracer leaves out the paths light tracing would contribute, whose variance the pilot
+    /// estimates from light paths ([`crate::caustic_variance`]).
+    caustics_left_out: bool,
 }
 
 impl<'a, T> Context<'a, T> {
@@ -479,6 +524,7 @@ impl<'a, T> Context<'a, T> {
             options,
             finish,
             pilot_costs: None,
+            caustics_left_out: false,
         }
     }
 }
@@ -505,6 +551,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         options,
         finish,
         pilot_costs: costs,
+        ..
     } = *context;
     let world = &scene.world;
     let camera: &Camera = view.camera;
@@ -524,9 +571,9 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         // sample's own.
         let key = UVec2::new(pixel.x, pixel.y + height);
         worker.sampler.start_pixel_sample(key, sample_index);
-        let mut add = |film: Vec2, value: Vec3| {
-            filter.for_each_pixel_at(film, width, height, |pixel, weight| {
-                splats.push((pixel, value * weight));
+        let mut add = |splat: CameraSplat| {
+            filter.for_each_pixel_at(splat.film, width, height, |pixel, weight| {
+                splats.push((pixel, splat.value * weight));
             });
         };
         tracer.trace(

@@ -13,7 +13,7 @@
 //! [`DirectSamples`] (Mitsuba's `direct` integrator) the first vertex draws the light numbers once
 //! per light sample, then the BSDF numbers once per BSDF sample, and nothing else is drawn.
 
-use crate::caustic_mis::LightPathStarts;
+use crate::caustic_mis::{CausticPaths, LightPathStarts};
 use crate::light_selection::SampledLights;
 use crate::path_reuse::ReusablePath;
 use crate::settings::{DirectSamples, Mis, PathSettings};
@@ -38,9 +38,9 @@ pub struct PathIntegrator {
     pub(super) draws_reservoir_choice: bool,
     /// Whether some material draws a number to choose its lobe.
     pub(super) draws_lobe_choice: bool,
-    /// With light tracing and BSDF sampling on, the light tracer's choice of the light its paths
-    /// start on, for the weights of caustics one bounce from the camera (`caustic_mis`).
-    pub(super) caustic_starts: Option<LightPathStarts>,
+    /// How emission at the end of a caustic chain counts: in full without light tracing,
+    /// shared with the light tracer where BSDF samples can find it (`caustic_mis`).
+    pub(super) caustic_paths: CausticPaths,
 }
 
 impl PathIntegrator {
@@ -76,10 +76,23 @@ impl PathIntegrator {
             draws_reservoir_choice: choices
                 && matches!(settings.light_selection, LightSelection::Ris { .. }),
             draws_lobe_choice: world.has_lobe_choice(),
-            caustic_starts: (settings.light_tracing && settings.sample_bsdf)
-                .then(|| LightPathStarts::new(world))
-                .flatten(),
+            caustic_paths: match LightPathStarts::new(world) {
+                _ if !settings.light_tracing => CausticPaths::Kept,
+                Some(starts) if settings.sample_bsdf => CausticPaths::Shared(starts),
+                _ => CausticPaths::Left,
+            },
         }
+    }
+
+    /// This integrator with the paths light tracing contributes left out entirely (emission met
+    /// by a delta bounce after a first vertex left by a non-delta lobe), as if a light tracer
+    /// took each of them whole, whatever the settings: the image then lacks them. For `auto`'s
+    /// pilot, which estimates the variance they add from light paths instead
+    /// ([`CameraSplat::path_tracer_ratio`](crate::CameraSplat::path_tracer_ratio)), since a
+    /// short render meets them too rarely to show it.
+    pub fn leaving_caustics(mut self) -> Self {
+        self.caustic_paths = CausticPaths::Left;
+        self
     }
 
     /// The lights of `world` as light sampling samples them, and as MIS weighs emission by.

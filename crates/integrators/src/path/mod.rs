@@ -21,7 +21,7 @@ mod state;
 
 pub use integrator::PathIntegrator;
 
-use crate::caustic_mis::light_tracer_weight;
+use crate::caustic_mis::CausticPaths;
 use crate::path_reuse::{ReusablePath, WalkSplit};
 use crate::reference::UNBOUNDED_DEPTH_CAP;
 use geometry::SpawnPoint;
@@ -29,7 +29,7 @@ use materials::BsdfFlags;
 use mis::ONE_EACH;
 use sampling::Sampler;
 use state::PathState;
-use world::{BsdfSlot, CameraRay, RayTally, SurfaceHit, World};
+use world::{BsdfSlot, CameraRay, RayTally, World};
 
 impl PathIntegrator {
     /// The path walk behind [`Self::radiance`] and, with `REUSE`, [`Self::radiance_reusable`].
@@ -77,10 +77,15 @@ impl PathIntegrator {
                 }
                 break;
             };
-            let share = if settings.light_tracing && path.caustic_chain {
-                self.caustic_share(world, surface, &path)
-            } else {
-                1.0
+            let share = match surface.light {
+                Some(light) if path.caustic_chain => self.caustic_paths.share(
+                    world,
+                    light,
+                    &surface.hit,
+                    path.through_deltas,
+                    path.camera_side,
+                ),
+                _ => 1.0,
             };
             if !hidden && share > 0.0 {
                 let (previous, delta) = (&path.previous, path.seen_through_delta);
@@ -91,7 +96,7 @@ impl PathIntegrator {
             }
             // The path tracer's side of the weights of caustics it shares with light tracing:
             // the camera's importance at the first vertex.
-            if path.depth == 1 && self.caustic_starts.is_some() {
+            if path.depth == 1 && matches!(self.caustic_paths, CausticPaths::Shared(_)) {
                 path.camera_side =
                     camera_ray.importance_at(surface.hit.p) * surface.hit.ng.dot(ray.dir).abs();
             }
@@ -135,19 +140,5 @@ impl PathIntegrator {
             t_max = f32::INFINITY;
         }
         split.finish(path.radiance)
-    }
-
-    /// The path tracer's share of emission that ends a caustic chain (light tracing on): 1 − the
-    /// light tracer's weight for a caustic one bounce from the camera (`caustic_mis`), 0 for a
-    /// longer one, which is the light tracer's alone.
-    #[inline]
-    fn caustic_share(&self, world: &World, surface: &SurfaceHit<'_>, path: &PathState) -> f32 {
-        let (Some(starts), Some(light), true) =
-            (&self.caustic_starts, surface.light, path.through_deltas)
-        else {
-            return 0.0;
-        };
-        let light_side = starts.density_at(world, light, surface.hit.ng, surface.hit.time);
-        1.0 - light_tracer_weight(light_side, path.camera_side)
     }
 }
