@@ -35,9 +35,17 @@
 //!   evaluations weighted by [`Cost`];
 //! - its efficiency is `1 / (V · C)`: the lecture's figure of merit, error × time.
 //!
-//! A trial is kept when its efficiency beats the base's by more than twice the standard error
-//! of their log ratio (independent units: 4 × 4 pixel blocks, so that path reuse's correlated
-//! blocks count once). Trials that exclude each other (the light selections; light tracing
+//! A trial is kept when its efficiency beats the base's by more than 2.4 standard errors of
+//! their log ratio (independent units: 4 × 4 pixel blocks, so that path reuse's correlated
+//! blocks count once) and by at least 1%. A trial that looks better but not by that much is
+//! *undecided*: it and the base get another round of two renders (new seeds, the same for
+//! both), and the comparison is made again on all their rounds, up to [`MAX_PILOT_ROUNDS`]
+//! rounds and as many renders again as the first round took, within the pilot's share of the
+//! budget. 2.4 is Pocock's bound for four
+//! looks: repeated looks at one comparison would otherwise let noise through more often than
+//! one look at 2 standard errors does. Heavy-tailed noise is where this matters: on Veach's
+//! scene one round's estimate of sampling every light ranged 0.9–1.9× the base's efficiency
+//! with the pilot's seed. Trials that exclude each other (the light selections; light tracing
 //! off and path reuse) keep only the best. When
 //! two or more trials are kept their combination is measured too, and the best measured
 //! candidate wins. The pilot's samples are not in the image (its seeds differ from the image's),
@@ -61,6 +69,19 @@ pub const MIN_PILOT_PIXELS: u32 = 16 * 16;
 
 /// Samples per pixel of each of a candidate's two pilot renders.
 pub const PILOT_SPP: u32 = 4;
+
+/// Most rounds of two renders a candidate gets: the first, and more for trials the first leaves
+/// undecided.
+pub const MAX_PILOT_ROUNDS: u32 = 4;
+
+/// The fewest standard errors of their log ratio by which a trial's efficiency must beat the
+/// base's: Pocock's constant bound for up to [`MAX_PILOT_ROUNDS`] looks at the same comparison,
+/// which keeps the chance that noise alone switches a technique near a single look's 2.3%.
+const SIGNIFICANT_ERRORS: f64 = 2.4;
+
+/// The smallest gain in efficiency worth a switch (1%), as a log ratio: an identical render
+/// (uniform light choice among lights of equal power) ties and keeps the base.
+const MIN_LOG_GAIN: f64 = 0.01;
 
 /// The pilot may take at most this share of a sample budget (counted in samples at the
 /// image's size); a smaller budget keeps the base settings.
@@ -235,12 +256,23 @@ pub struct Measured {
     units: Vec<f64>,
     /// Cost of one pilot render, in occlusion-ray units ([`Cost`]).
     pub cost: f64,
+    /// Rounds of two renders measured.
+    pub rounds: u32,
+    /// The base's variance and cost measured on the same rounds (a trial's comparison with it);
+    /// `None` for the base.
+    pub base_on_same_rounds: Option<(f64, f64)>,
 }
 
 impl Measured {
     /// Efficiency, `1 / (variance × cost)`; infinite for a noiseless candidate.
     pub fn efficiency(&self) -> f64 {
         1.0 / (self.variance * self.cost)
+    }
+
+    /// Efficiency relative to the base's on the same rounds (1 for the base).
+    pub fn relative_efficiency(&self) -> f64 {
+        self.base_on_same_rounds
+            .map_or(1.0, |(variance, cost)| self.efficiency() * variance * cost)
     }
 }
 
@@ -285,12 +317,18 @@ impl AutoChoice {
             .iter()
             .skip(1)
             .map(|m| {
+                let (variance, cost) = m.base_on_same_rounds.unwrap_or((base.variance, base.cost));
+                let rounds = if m.rounds > 1 {
+                    format!(", {} rounds", m.rounds)
+                } else {
+                    String::new()
+                };
                 format!(
-                    "{} {:.2} (variance {:.2}, cost {:.2})",
+                    "{} {:.2} (variance {:.2}, cost {:.2}{rounds})",
                     m.label,
-                    m.efficiency() / base.efficiency(),
-                    m.variance / base.variance,
-                    m.cost / base.cost
+                    m.relative_efficiency(),
+                    m.variance / variance,
+                    m.cost / cost
                 )
             })
             .collect();
@@ -317,18 +355,44 @@ pub struct TechniquePilot {
     pub rays: RayCounters,
 }
 
-/// Seed of render `replica` (0 or 1) of every candidate of the pilot, for a render seeded with
-/// `seed`: streams apart from the image's and from each other. Every candidate uses the same
-/// two seeds (common random numbers), so that where candidates draw the same numbers their
-/// errors are alike and their ratio is known better than either.
+/// Seed of render `replica` for a render seeded with `seed`: streams apart from the image's and
+/// from each other. Replicas 0 and 1 are the first round's two renders of every candidate; 2
+/// and 3 serve the pilot's other needs; round `r` > 0 renders replicas `2r + 2` and `2r + 3`
+/// ([`round_replicas`]). Every candidate of a round uses the same two seeds (common random
+/// numbers), so that where candidates draw the same numbers their errors are alike and their
+/// ratio is known better than either.
 pub fn pilot_seed(seed: u32, replica: u32) -> u32 {
     sampling::rng::wang_hash(seed ^ 0x5EED_0A70 ^ (replica << 4))
 }
 
-/// Camera samples the pilot takes per thumbnail pixel for `trials`, at most: every candidate's
-/// two renders, and a combination.
+/// The replicas ([`pilot_seed`]) of the two renders of pilot round `round`.
+pub fn round_replicas(round: u32) -> [u32; 2] {
+    if round == 0 {
+        [0, 1]
+    } else {
+        [2 * round + 2, 2 * round + 3]
+    }
+}
+
+/// Camera samples the first round of the pilot takes per thumbnail pixel for `trials`, at most:
+/// every candidate's two renders, and a combination.
 pub fn pilot_samples_per_pixel(trials: &Trials) -> f64 {
     (2.0 + trials.switches().len() as f64) * 2.0 * f64::from(PILOT_SPP)
+}
+
+/// How many candidate renders (pairs of [`PILOT_SPP`]-spp renders) of further rounds the pilot
+/// of `trials` on `thumbnail` may add when it may take `affordable` camera samples in all: what
+/// the first round leaves, at most as many as the first round renders.
+pub fn extension_renders(trials: &Trials, (width, height): (u32, u32), affordable: f64) -> usize {
+    let per_render = 2.0 * f64::from(PILOT_SPP) * f64::from(width) * f64::from(height);
+    let first = pilot_samples_per_pixel(trials) * f64::from(width) * f64::from(height);
+    let left = ((affordable - first) / per_render).floor().max(0.0);
+    let most = 1 + trials.switches().len();
+    if left >= most as f64 {
+        most
+    } else {
+        left as usize
+    }
 }
 
 /// The pilot's thumbnail for a `width × height` image rendered with `trials` at `spp` samples
@@ -361,12 +425,15 @@ pub fn thumbnail_size(
 }
 
 /// Measures the candidates of `trials` on top of `base` with `render` (which renders a
-/// candidate's two pilot images) and returns the best, as the module documentation describes.
+/// candidate's two pilot images of a round, from the seeds of [`round_replicas`]) and returns
+/// the best, as the module documentation describes. Further rounds render at most
+/// `extension_renders` candidates ([`extension_renders`]).
 pub fn choose<E>(
     base: PathSettings,
     trials: &Trials,
     thumbnail: (u32, u32),
-    mut render: impl FnMut(&PathSettings) -> Result<PilotRenders, E>,
+    extension_renders: usize,
+    mut render: impl FnMut(&PathSettings, u32) -> Result<PilotRenders, E>,
 ) -> Result<AutoChoice, E> {
     let switches = trials.switches();
     let mut candidates = vec![("base".to_string(), base)];
@@ -375,26 +442,61 @@ pub fn choose<E>(
             .iter()
             .map(|s| (s.label().to_string(), s.apply(base))),
     );
-    let mut renders = Vec::with_capacity(candidates.len() + 1);
+    // Each candidate's rounds of renders, the first for all.
+    let mut rounds: Vec<Vec<PilotRenders>> = Vec::with_capacity(candidates.len() + 1);
     for (_, settings) in &candidates {
-        renders.push(render(settings)?);
+        rounds.push(vec![render(settings, 0)?]);
     }
-    let means = pooled_means(&renders);
+    // Undecided trials and the base get more rounds, within as many renders as the first took
+    // and the budget allows.
+    let mut renders_left = extension_renders.min(candidates.len());
+    for round in 1..MAX_PILOT_ROUNDS {
+        let means = pooled_means(&rounds);
+        let base_rounds = &rounds[0];
+        let undecided: Vec<usize> = (1..candidates.len())
+            .filter(|&i| rounds[i].len() == base_rounds.len())
+            .filter(|&i| {
+                let (trial, base) = compare(&candidates, &rounds, i, &means, thumbnail);
+                verdict(&trial, &base) == Verdict::Undecided
+            })
+            .collect();
+        if undecided.is_empty() || 1 + undecided.len() > renders_left {
+            break;
+        }
+        renders_left -= 1 + undecided.len();
+        for i in std::iter::once(0).chain(undecided) {
+            let renders = render(&candidates[i].1, round)?;
+            rounds[i].push(renders);
+        }
+    }
+    let means = pooled_means(&rounds);
     let mut measured: Vec<Measured> = candidates
         .iter()
-        .zip(&renders)
-        .map(|((label, settings), pilot)| measure(label, *settings, pilot, &means, thumbnail))
+        .zip(&rounds)
+        .map(|((label, settings), renders)| measure(label, *settings, renders, &means, thumbnail))
         .collect();
+    for (i, trial) in measured.iter_mut().enumerate().skip(1) {
+        let base = measure(
+            "base",
+            base,
+            &rounds[0][..rounds[i].len()],
+            &means,
+            thumbnail,
+        );
+        trial.base_on_same_rounds = Some((base.variance, base.cost));
+    }
 
-    // The trials that beat the base beyond noise. Trials of one group exclude each other (two
-    // light selections; light tracing off and path reuse, which turns it off), so only the
-    // better of a group stays.
-    let base_measured = measured[0].clone();
+    // The trials that beat the base beyond noise, each compared on the rounds it has. Trials of
+    // one group exclude each other (two light selections; light tracing off and path reuse,
+    // which turns it off), so only the better of a group stays.
     let mut kept: Vec<(Switch, f64)> = switches
         .iter()
-        .zip(&measured[1..])
-        .filter(|(_, m)| significantly_better(m, &base_measured))
-        .map(|(&s, m)| (s, m.efficiency()))
+        .enumerate()
+        .filter(|&(k, _)| {
+            let (trial, base) = compare(&candidates, &rounds, k + 1, &means, thumbnail);
+            verdict(&trial, &base) == Verdict::Better
+        })
+        .map(|(k, &s)| (s, measured[k + 1].relative_efficiency()))
         .collect();
     let groups: [&[Switch]; 2] = [
         &[Switch::Ris, Switch::UniformLights, Switch::EveryLight],
@@ -418,16 +520,20 @@ pub fn choose<E>(
     if kept.len() >= 2 {
         let settings = kept.iter().fold(base, |s, (switch, _)| switch.apply(s));
         let label: String = kept.iter().map(|(s, _)| s.label()).collect();
-        let pilot = render(&settings)?;
-        measured.push(measure(&label, settings, &pilot, &means, thumbnail));
+        let pilot = [render(&settings, 0)?];
+        let base = measure("base", base, &rounds[0][..1], &means, thumbnail);
+        measured.push(Measured {
+            base_on_same_rounds: Some((base.variance, base.cost)),
+            ..measure(&label, settings, &pilot, &means, thumbnail)
+        });
         eligible.push(measured.len() - 1);
     }
     let best = eligible
         .into_iter()
         .max_by(|&a, &b| {
             measured[a]
-                .efficiency()
-                .total_cmp(&measured[b].efficiency())
+                .relative_efficiency()
+                .total_cmp(&measured[b].relative_efficiency())
         })
         .unwrap_or(0);
     Ok(AutoChoice {
@@ -439,18 +545,57 @@ pub fn choose<E>(
     })
 }
 
-/// Whether `candidate`'s efficiency beats `base`'s by more than twice the standard error of
-/// their log ratio. The error is that of the ratio of the two variances' block means, paired
-/// block by block (the delta method): both were rendered from the same seeds, so their blocks'
-/// errors are correlated, and the covariance narrows the ratio's error.
-fn significantly_better(candidate: &Measured, base: &Measured) -> bool {
+/// What one comparison of a trial with the base says.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Verdict {
+    /// More efficient beyond noise ([`SIGNIFICANT_ERRORS`]) and by at least [`MIN_LOG_GAIN`].
+    Better,
+    /// Looks more efficient, but not beyond noise: worth another round.
+    Undecided,
+    /// Not more efficient.
+    Worse,
+}
+
+/// Trial `trial` (an index into `candidates`) and the base, measured on the rounds the trial
+/// has, for [`verdict`].
+fn compare(
+    candidates: &[(String, PathSettings)],
+    rounds: &[Vec<PilotRenders>],
+    trial: usize,
+    means: &[[f64; 3]],
+    thumbnail: (u32, u32),
+) -> (Measured, Measured) {
+    let n = rounds[trial].len();
+    let measured = |i: usize| {
+        let (label, settings) = &candidates[i];
+        measure(label, *settings, &rounds[i][..n], means, thumbnail)
+    };
+    (measured(trial), measured(0))
+}
+
+/// How `candidate`'s efficiency compares with `base`'s, both measured on the same rounds. The
+/// noise is the standard error of the log ratio of the two variances' block means, paired block
+/// by block (the delta method): both were rendered from the same seeds, so their blocks' errors
+/// are correlated, and the covariance narrows the ratio's error.
+fn verdict(candidate: &Measured, base: &Measured) -> Verdict {
     let ratio = candidate.efficiency() / base.efficiency();
     if !ratio.is_finite() || ratio == 0.0 {
         // A noiseless candidate against a noisy base wins; a noisy one against a noiseless base
         // loses; two noiseless ones tie (the base stays).
-        return candidate.variance == 0.0 && base.variance > 0.0;
+        return if candidate.variance == 0.0 && base.variance > 0.0 {
+            Verdict::Better
+        } else {
+            Verdict::Worse
+        };
     }
-    ratio.ln() > 2.0 * log_ratio_error(&candidate.units, &base.units)
+    let gain = ratio.ln();
+    if gain <= MIN_LOG_GAIN {
+        Verdict::Worse
+    } else if gain > SIGNIFICANT_ERRORS * log_ratio_error(&candidate.units, &base.units) {
+        Verdict::Better
+    } else {
+        Verdict::Undecided
+    }
 }
 
 /// Standard error of `ln(mean(a) / mean(b))` for paired units `a` and `b` (delta method).
@@ -472,14 +617,14 @@ fn log_ratio_error(a: &[f64], b: &[f64]) -> f64 {
     variance.max(0.0).sqrt()
 }
 
-/// Per pixel and channel, the mean of every render of every candidate.
-fn pooled_means(renders: &[PilotRenders]) -> Vec<[f64; 3]> {
-    let pixels = renders[0].images[0].data.len();
-    let count = (renders.len() * 2) as f64;
-    (0..pixels)
+/// Per pixel and channel, the mean of every render of every candidate, every round.
+fn pooled_means(rounds: &[Vec<PilotRenders>]) -> Vec<[f64; 3]> {
+    let images: Vec<&Image> = rounds.iter().flatten().flat_map(|r| &r.images).collect();
+    let count = images.len() as f64;
+    (0..images[0].data.len())
         .map(|i| {
             let mut sum = [0.0; 3];
-            for image in renders.iter().flat_map(|r| &r.images) {
+            for image in &images {
                 let value = image.data[i].as_dvec3();
                 sum[0] += value.x;
                 sum[1] += value.y;
@@ -490,25 +635,26 @@ fn pooled_means(renders: &[PilotRenders]) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// The relative variance, its standard error and the cost of one candidate's pilot.
+/// The relative variance, its standard error and the cost of one candidate's pilot render,
+/// from its `rounds` (one or more).
 fn measure(
     label: &str,
     settings: PathSettings,
-    pilot: &PilotRenders,
+    rounds: &[PilotRenders],
     means: &[[f64; 3]],
     (width, height): (u32, u32),
 ) -> Measured {
-    let [a, b] = &pilot.images;
-    // Per pixel and channel, (a − b)² / 2 estimates a render's variance; the variance of the
-    // caustic paths the renders leave out, where they do, is added.
+    // Per pixel and channel, (a − b)² / 2 estimates a render's variance, averaged over the
+    // rounds; the variance of the caustic paths the renders leave out, where they do, is added.
+    let unseen = rounds[0].caustic_variance.as_deref();
+    let per_round = 1.0 / rounds.len() as f64;
     let term = |i: usize| -> f64 {
-        let (a, b) = (a.data[i].as_dvec3(), b.data[i].as_dvec3());
-        let d = a - b;
-        let unseen = pilot
-            .caustic_variance
-            .as_ref()
-            .map_or(DVec3::ZERO, |v| v[i].as_dvec3());
-        let variance = d * d / 2.0 + unseen;
+        let mut variance = unseen.map_or(DVec3::ZERO, |v| v[i].as_dvec3());
+        for pilot in rounds {
+            let [a, b] = &pilot.images;
+            let d = a.data[i].as_dvec3() - b.data[i].as_dvec3();
+            variance += d * d / 2.0 * per_round;
+        }
         let m = means[i];
         (variance.x / (m[0] * m[0] + RELMSE_EPSILON)
             + variance.y / (m[1] * m[1] + RELMSE_EPSILON)
@@ -544,11 +690,15 @@ fn measure(
         LightSelection::All => 1.0,
         _ => 0.0,
     };
-    let rays = pilot.rays;
-    let cost = (COST.closest_ray * rays.rays as f64
-        + (1.0 + COST.ris_candidate * ris_candidates) * rays.shadow_rays as f64
-        + COST.sample * pilot.samples as f64)
-        / 2.0;
+    let cost = rounds
+        .iter()
+        .map(|pilot| {
+            COST.closest_ray * pilot.rays.rays as f64
+                + (1.0 + COST.ris_candidate * ris_candidates) * pilot.rays.shadow_rays as f64
+                + COST.sample * pilot.samples as f64
+        })
+        .sum::<f64>()
+        / (2.0 * rounds.len() as f64);
     Measured {
         label: label.to_string(),
         settings,
@@ -556,6 +706,8 @@ fn measure(
         variance_error,
         cost,
         units,
+        rounds: rounds.len() as u32,
+        base_on_same_rounds: None,
     }
 }
 
@@ -611,11 +763,11 @@ mod tests {
             path_reuse: true,
             ..Trials::default()
         };
-        let choice = choose(base(), &trials, SIZE, |s| {
+        let choice = choose(base(), &trials, SIZE, usize::MAX, |s, round| {
             Ok::<_, ()>(if s.path_reuse.is_some() {
-                renders(0.1 / 2f32.sqrt(), 100, 2)
+                renders(0.1 / 2f32.sqrt(), 100, 2 + 16 * round)
             } else {
-                renders(0.1, 100, 1)
+                renders(0.1, 100, 1 + 16 * round)
             })
         })
         .unwrap();
@@ -633,11 +785,11 @@ mod tests {
             path_reuse: true,
             ..Trials::default()
         };
-        let choice = choose(base(), &trials, SIZE, |s| {
+        let choice = choose(base(), &trials, SIZE, usize::MAX, |s, round| {
             Ok::<_, ()>(if s.path_reuse.is_some() {
-                renders(0.1 / 2f32.sqrt(), 400, 2)
+                renders(0.1 / 2f32.sqrt(), 400, 2 + 16 * round)
             } else {
-                renders(0.1, 100, 1)
+                renders(0.1, 100, 1 + 16 * round)
             })
         })
         .unwrap();
@@ -647,9 +799,10 @@ mod tests {
 
     #[test]
     fn noise_alone_rarely_switches_a_technique() {
-        // Same variance and cost: a switch is a false positive of the 2-standard-error rule,
-        // about 2.3% per trial, so about 4.6% of pilots with two trials. Over 100 seeded pilots
-        // 12 or more switches would happen with probability below 1e-3 if the rule were right.
+        // Same variance and cost: a switch is a false positive of the 2.4-standard-error rule
+        // over up to four looks, about 2.3% per trial, so about 4.6% of pilots with two trials.
+        // Over 100 seeded pilots 12 or more switches would happen with probability below 1e-3 if
+        // the rule were right.
         let trials = Trials {
             ris: true,
             no_roulette: true,
@@ -657,10 +810,10 @@ mod tests {
         };
         let mut switched = Vec::new();
         for seed in 0..100 {
-            let choice = choose(base(), &trials, SIZE, |s| {
+            let choice = choose(base(), &trials, SIZE, usize::MAX, |s, round| {
                 let which = u32::from(s.russian_roulette.is_none())
                     + 2 * u32::from(s.light_selection != LightSelection::Power);
-                Ok::<_, ()>(renders(0.1, 100, seed * 4 + which + 1))
+                Ok::<_, ()>(renders(0.1, 100, seed * 4 + which + 1 + 400 * round))
             })
             .unwrap();
             if choice.label != "base" {
@@ -675,6 +828,69 @@ mod tests {
     }
 
     #[test]
+    fn an_undecided_trial_gets_more_rounds_and_a_worse_one_none() {
+        // RIS at 0.8 of the base's variance, the same cost: a gain of about 2.5 standard errors
+        // of one round's log ratio, which one round often leaves undecided and three decide.
+        // Roulette off and path reuse at 1.5 times the variance are worse and get no more
+        // rounds. Four renders in the first round allow two more rounds of two.
+        let trials = Trials {
+            ris: true,
+            no_roulette: true,
+            path_reuse: true,
+            ..Trials::default()
+        };
+        let (mut chosen, mut extended) = (0, 0);
+        for seed in 0..20 {
+            let mut calls = 0;
+            let choice = choose(base(), &trials, SIZE, usize::MAX, |s, round| {
+                calls += 1;
+                let ris = s.light_selection != LightSelection::Power;
+                let worse = s.russian_roulette.is_none() || s.path_reuse.is_some();
+                let spread = match (ris, worse) {
+                    (false, false) => 0.1,
+                    (true, false) => 0.1 * 0.8f32.sqrt(),
+                    (false, true) => 0.1 * 1.5f32.sqrt(),
+                    (true, true) => unreachable!("no combination is kept"),
+                };
+                let which = u32::from(ris)
+                    + 2 * u32::from(s.russian_roulette.is_none())
+                    + 4 * u32::from(s.path_reuse.is_some());
+                Ok::<_, ()>(renders(spread, 100, 1 + seed * 8 + which + 400 * round))
+            })
+            .unwrap();
+            let [base, ris, roulette, reuse] = &choice.measured[..] else {
+                panic!("seed {seed}: {}", choice.reason());
+            };
+            assert_eq!(roulette.rounds, 1, "seed {seed}: {}", choice.reason());
+            assert_eq!(reuse.rounds, 1, "seed {seed}: {}", choice.reason());
+            assert_eq!(base.rounds, ris.rounds, "seed {seed}: {}", choice.reason());
+            // The first round's four renders may be followed by at most four more.
+            assert!(calls <= 8, "seed {seed}: {calls} renders");
+            chosen += u32::from(choice.label == "+ris");
+            extended += u32::from(ris.rounds > 1);
+        }
+        // One round decides about half the pilots; with more rounds nearly all should choose RIS.
+        assert!(chosen >= 17, "RIS chosen in {chosen} of 20");
+        assert!(extended >= 3, "{extended} of 20 pilots took more rounds");
+    }
+
+    #[test]
+    fn further_rounds_take_what_the_first_leaves_of_the_budget() {
+        let one = Trials {
+            ris: true,
+            ..Trials::default()
+        };
+        // The first round of 64 x 64 pixels takes 24 samples per pixel; a render 8.
+        let first = 24.0 * 4096.0;
+        assert_eq!(extension_renders(&one, (64, 64), first), 0);
+        assert_eq!(extension_renders(&one, (64, 64), first + 8.0 * 4096.0), 1);
+        // At most as many as the first round renders (base and trial).
+        assert_eq!(extension_renders(&one, (64, 64), 10.0 * first), 2);
+        assert_eq!(extension_renders(&one, (64, 64), f64::INFINITY), 2);
+        assert_eq!(extension_renders(&one, (64, 64), 0.0), 0);
+    }
+
+    #[test]
     fn two_kept_trials_are_measured_together() {
         let trials = Trials {
             ris: true,
@@ -682,11 +898,15 @@ mod tests {
             ..Trials::default()
         };
         let mut calls = 0;
-        let choice = choose(base(), &trials, SIZE, |s| {
+        let choice = choose(base(), &trials, SIZE, usize::MAX, |s, round| {
             calls += 1;
             let better = u32::from(s.russian_roulette.is_none())
                 + u32::from(s.light_selection != LightSelection::Power);
-            Ok::<_, ()>(renders(0.1 / 2f32.powi(better as i32), 100, calls))
+            Ok::<_, ()>(renders(
+                0.1 / 2f32.powi(better as i32),
+                100,
+                calls + 16 * round,
+            ))
         })
         .unwrap();
         assert_eq!(calls, 4, "base, two trials and their combination");
@@ -708,13 +928,13 @@ mod tests {
         };
         let pixels = (SIZE.0 * SIZE.1) as usize;
         let choose_with = |unseen: f32| {
-            choose(traced, &trials, SIZE, |s| {
+            choose(traced, &trials, SIZE, usize::MAX, |s, round| {
                 Ok::<_, ()>(if s.light_tracing {
-                    renders(0.1, 150, 1)
+                    renders(0.1, 150, 1 + 16 * round)
                 } else {
                     PilotRenders {
                         caustic_variance: Some(vec![Vec3::splat(unseen); pixels]),
-                        ..renders(0.1, 100, 2)
+                        ..renders(0.1, 100, 2 + 16 * round)
                     }
                 })
             })
@@ -743,11 +963,11 @@ mod tests {
             path_reuse: true,
             ..Trials::default()
         };
-        let choice = choose(traced, &trials, SIZE, |s| {
+        let choice = choose(traced, &trials, SIZE, usize::MAX, |s, round| {
             Ok::<_, ()>(match (s.light_tracing, s.path_reuse.is_some()) {
-                (true, false) => renders(0.1, 100, 1),
-                (false, false) => renders(0.05, 100, 2),
-                (false, true) => renders(0.03, 100, 3),
+                (true, false) => renders(0.1, 100, 1 + 16 * round),
+                (false, false) => renders(0.05, 100, 2 + 16 * round),
+                (false, true) => renders(0.03, 100, 3 + 16 * round),
                 (true, true) => panic!("light tracing with path reuse was rendered"),
             })
         })
@@ -769,12 +989,12 @@ mod tests {
             every_light: true,
             ..Trials::default()
         };
-        let choice = choose(base(), &trials, SIZE, |s| {
+        let choice = choose(base(), &trials, SIZE, usize::MAX, |s, round| {
             Ok::<_, ()>(match s.light_selection {
-                LightSelection::Power => renders(0.1, 100, 1),
-                LightSelection::Ris { .. } => renders(0.05, 100, 2),
-                LightSelection::Uniform => renders(0.03, 100, 3),
-                LightSelection::All => renders(0.02, 100, 4),
+                LightSelection::Power => renders(0.1, 100, 1 + 16 * round),
+                LightSelection::Ris { .. } => renders(0.05, 100, 2 + 16 * round),
+                LightSelection::Uniform => renders(0.03, 100, 3 + 16 * round),
+                LightSelection::All => renders(0.02, 100, 4 + 16 * round),
             })
         })
         .unwrap();
@@ -805,19 +1025,19 @@ mod tests {
         assert!(w * h <= PILOT_PIXELS, "{w}x{h}");
         assert!(w * h > PILOT_PIXELS / 2, "{w}x{h}");
         assert!((w as f64 / h as f64 - 1920.0 / 1080.0).abs() < 0.05);
-        // 128 x 128 at 64 spp: 3 candidates x 2 renders x 4 spp per thumbnail pixel may take
-        // a tenth of 64 x 16384 samples, 43690 thumbnail pixels: the 4096 cap holds.
+        // One trial: 2 candidates and a combination, each 2 x 4 spp, 24 samples per thumbnail
+        // pixel, may take a tenth of the image's samples. 128 x 128 at 64 spp allows 4369
+        // pixels: the 4096 cap holds.
+        assert_eq!(pilot_samples_per_pixel(&one), 24.0);
         assert_eq!(
             thumbnail_size(128, 128, &one, Some(64), f64::INFINITY),
             Some((64, 64))
         );
-        // At 8 spp: 4369 pixels would do, but 64 x 64 is the largest whole division under it.
+        // At 8 spp 546 pixels: 22 x 22 is the largest whole division under it.
         let (w, h) = thumbnail_size(128, 128, &one, Some(8), f64::INFINITY).unwrap();
-        let pilot = 3 * 2 * PILOT_SPP * w * h;
-        assert!(
-            f64::from(pilot) <= MAX_PILOT_SHARE * 8.0 * 128.0 * 128.0,
-            "{w}x{h}"
-        );
+        assert_eq!((w, h), (22, 22));
+        let pilot = pilot_samples_per_pixel(&one) * f64::from(w * h);
+        assert!(pilot <= MAX_PILOT_SHARE * 8.0 * 128.0 * 128.0, "{w}x{h}");
         // At 1 spp not even 16 x 16 pixels fit.
         assert_eq!(thumbnail_size(128, 128, &one, Some(1), f64::INFINITY), None);
         // A time budget's cap on the pixels.

@@ -204,6 +204,13 @@ fn choose_techniques(
             ),
         });
     };
+    // The samples the pilot may take: a share of the image's, or of the time as the probe
+    // timed it; what its first round leaves pays for further rounds.
+    let affordable = match whole_spp {
+        Some(spp) => auto::MAX_PILOT_SHARE * f64::from(spp) * f64::from(width) * f64::from(height),
+        None => most_pixels * auto::pilot_samples_per_pixel(&plan.trials),
+    };
+    let extension_renders = auto::extension_renders(&plan.trials, thumbnail, affordable);
     let camera = Camera::new(&scene.desc.sensor, thumbnail.0, thumbnail.1);
     let view = View {
         camera: &camera,
@@ -220,67 +227,73 @@ fn choose_techniques(
     let base_tracer = LightTracer::new(&scene.world, &base, camera.traits())
         .filter(|_| base.light_tracing && camera.connects());
     let mut caustics: Option<Vec<Vec3>> = None;
-    let choice = auto::choose(base, &plan.trials, thumbnail, |settings| {
-        let before = RayCounters {
-            rays: rays.load(Ordering::Relaxed),
-            shadow_rays: shadow_rays.load(Ordering::Relaxed),
-        };
-        let caustics_left_out = !settings.light_tracing && base_tracer.is_some();
-        let mut images = Vec::with_capacity(2);
-        for replica in 0..2 {
-            let pilot_plan = RenderPlan {
-                transport: Transport::Path(*settings),
-                sampler: plan.sampler,
-                seed: auto::pilot_seed(plan.seed, replica),
-                budget: RenderBudget::spp(auto::PILOT_SPP),
-                sampler_spp: auto::PILOT_SPP,
-                adaptive: false,
-                trials: Trials::default(),
-                independent_time: plan.independent_time,
+    let choice = auto::choose(
+        base,
+        &plan.trials,
+        thumbnail,
+        extension_renders,
+        |settings, round| {
+            let before = RayCounters {
+                rays: rays.load(Ordering::Relaxed),
+                shadow_rays: shadow_rays.load(Ordering::Relaxed),
             };
-            let context = Context {
-                view,
-                caustics_left_out,
-                ..Context::new(scene, &pilot_plan, filter, &quiet, &count)
+            let caustics_left_out = !settings.light_tracing && base_tracer.is_some();
+            let mut images = Vec::with_capacity(2);
+            for replica in auto::round_replicas(round) {
+                let pilot_plan = RenderPlan {
+                    transport: Transport::Path(*settings),
+                    sampler: plan.sampler,
+                    seed: auto::pilot_seed(plan.seed, replica),
+                    budget: RenderBudget::spp(auto::PILOT_SPP),
+                    sampler_spp: auto::PILOT_SPP,
+                    adaptive: false,
+                    trials: Trials::default(),
+                    independent_time: plan.independent_time,
+                };
+                let context = Context {
+                    view,
+                    caustics_left_out,
+                    ..Context::new(scene, &pilot_plan, filter, &quiet, &count)
+                };
+                images.push(render_sampled(&context)?.film.to_image());
+            }
+            let after = RayCounters {
+                rays: rays.load(Ordering::Relaxed),
+                shadow_rays: shadow_rays.load(Ordering::Relaxed),
             };
-            images.push(render_sampled(&context)?.film.to_image());
-        }
-        let after = RayCounters {
-            rays: rays.load(Ordering::Relaxed),
-            shadow_rays: shadow_rays.load(Ordering::Relaxed),
-        };
-        // The caustics' variance, from light paths, once for every candidate that leaves them
-        // out (not in a candidate's cost: the candidate traces none).
-        let caustics = match &base_tracer {
-            Some(tracer) if caustics_left_out => Some(
-                caustics
-                    .get_or_insert_with(|| {
-                        let mut probe = RayCounters::default();
-                        let variance = caustic_variance(
-                            &scene.world,
-                            tracer,
-                            &camera,
-                            thumbnail,
-                            filter,
-                            auto::pilot_seed(plan.seed, 3),
-                            auto::PILOT_SPP,
-                            &mut probe,
-                        );
-                        count(&mut probe);
-                        variance
-                    })
-                    .clone(),
-            ),
-            _ => None,
-        };
-        let [a, b]: [Image; 2] = images.try_into().expect("two renders");
-        Ok(PilotRenders {
-            images: [a, b],
-            rays: after.since(before),
-            samples: 2 * u64::from(auto::PILOT_SPP) * u64::from(thumbnail.0 * thumbnail.1),
-            caustic_variance: caustics,
-        })
-    })?;
+            // The caustics' variance, from light paths, once for every candidate that leaves them
+            // out (not in a candidate's cost: the candidate traces none).
+            let caustics = match &base_tracer {
+                Some(tracer) if caustics_left_out => Some(
+                    caustics
+                        .get_or_insert_with(|| {
+                            let mut probe = RayCounters::default();
+                            let variance = caustic_variance(
+                                &scene.world,
+                                tracer,
+                                &camera,
+                                thumbnail,
+                                filter,
+                                auto::pilot_seed(plan.seed, 3),
+                                auto::PILOT_SPP,
+                                &mut probe,
+                            );
+                            count(&mut probe);
+                            variance
+                        })
+                        .clone(),
+                ),
+                _ => None,
+            };
+            let [a, b]: [Image; 2] = images.try_into().expect("two renders");
+            Ok(PilotRenders {
+                images: [a, b],
+                rays: after.since(before),
+                samples: 2 * u64::from(auto::PILOT_SPP) * u64::from(thumbnail.0 * thumbnail.1),
+                caustic_variance: caustics,
+            })
+        },
+    )?;
     Ok(Some(TechniquePilot {
         choice,
         seconds: start.elapsed().as_secs_f64(),
