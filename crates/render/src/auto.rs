@@ -469,34 +469,29 @@ pub fn choose<E>(
             rounds[i].push(renders);
         }
     }
+    // Each trial on all its rounds, against the base on the same rounds.
     let means = pooled_means(&rounds);
-    let mut measured: Vec<Measured> = candidates
-        .iter()
-        .zip(&rounds)
-        .map(|((label, settings), renders)| measure(label, *settings, renders, &means, thumbnail))
-        .collect();
-    for (i, trial) in measured.iter_mut().enumerate().skip(1) {
-        let base = measure(
-            "base",
-            base,
-            &rounds[0][..rounds[i].len()],
-            &means,
-            thumbnail,
-        );
-        trial.base_on_same_rounds = Some((base.variance, base.cost));
+    let (label, settings) = &candidates[0];
+    let mut measured = vec![measure(label, *settings, &rounds[0], &means, thumbnail)];
+    let mut verdicts = Vec::with_capacity(switches.len());
+    for i in 1..candidates.len() {
+        let (trial, base) = compare(&candidates, &rounds, i, &means, thumbnail);
+        verdicts.push(verdict(&trial, &base));
+        measured.push(Measured {
+            base_on_same_rounds: Some((base.variance, base.cost)),
+            ..trial
+        });
     }
 
-    // The trials that beat the base beyond noise, each compared on the rounds it has. Trials of
-    // one group exclude each other (two light selections; light tracing off and path reuse,
-    // which turns it off), so only the better of a group stays.
+    // The trials that beat the base beyond noise. Trials of one group exclude each other (two
+    // light selections; light tracing off and path reuse, which turns it off), so only the
+    // better of a group stays.
     let mut kept: Vec<(Switch, f64)> = switches
         .iter()
-        .enumerate()
-        .filter(|&(k, _)| {
-            let (trial, base) = compare(&candidates, &rounds, k + 1, &means, thumbnail);
-            verdict(&trial, &base) == Verdict::Better
-        })
-        .map(|(k, &s)| (s, measured[k + 1].relative_efficiency()))
+        .zip(&verdicts)
+        .zip(&measured[1..])
+        .filter(|((_, verdict), _)| **verdict == Verdict::Better)
+        .map(|((&s, _), m)| (s, m.relative_efficiency()))
         .collect();
     let groups: [&[Switch]; 2] = [
         &[Switch::Ris, Switch::UniformLights, Switch::EveryLight],
