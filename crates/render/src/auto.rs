@@ -380,19 +380,21 @@ pub fn pilot_samples_per_pixel(trials: &Trials) -> f64 {
     (2.0 + trials.switches().len() as f64) * 2.0 * f64::from(PILOT_SPP)
 }
 
+/// The camera samples a pilot may take for a `width × height` image rendered at `spp` samples
+/// per pixel: [`MAX_PILOT_SHARE`] of the image's.
+pub fn pilot_sample_share(width: u32, height: u32, spp: u32) -> f64 {
+    MAX_PILOT_SHARE * f64::from(spp) * f64::from(width) * f64::from(height)
+}
+
 /// How many candidate renders (pairs of [`PILOT_SPP`]-spp renders) of further rounds the pilot
 /// of `trials` on `thumbnail` may add when it may take `affordable` camera samples in all: what
 /// the first round leaves, at most as many as the first round renders.
 pub fn extension_renders(trials: &Trials, (width, height): (u32, u32), affordable: f64) -> usize {
     let per_render = 2.0 * f64::from(PILOT_SPP) * f64::from(width) * f64::from(height);
     let first = pilot_samples_per_pixel(trials) * f64::from(width) * f64::from(height);
-    let left = ((affordable - first) / per_render).floor().max(0.0);
-    let most = 1 + trials.switches().len();
-    if left >= most as f64 {
-        most
-    } else {
-        left as usize
-    }
+    // A float's conversion saturates: an unbounded budget leaves `usize::MAX`.
+    let left = ((affordable - first) / per_render).floor().max(0.0) as usize;
+    left.min(1 + trials.switches().len())
 }
 
 /// The pilot's thumbnail for a `width × height` image rendered with `trials` at `spp` samples
@@ -407,9 +409,8 @@ pub fn thumbnail_size(
     spp: Option<u32>,
     most_pixels: f64,
 ) -> Option<(u32, u32)> {
-    let per_pixel = pilot_samples_per_pixel(trials);
     let affordable = spp.map_or(f64::INFINITY, |spp| {
-        MAX_PILOT_SHARE * f64::from(spp) * f64::from(width) * f64::from(height) / per_pixel
+        pilot_sample_share(width, height, spp) / pilot_samples_per_pixel(trials)
     });
     let most = affordable.min(f64::from(PILOT_PIXELS)).min(most_pixels);
     let mut factor = 1;

@@ -207,7 +207,7 @@ fn choose_techniques(
     // The samples the pilot may take: a share of the image's, or of the time as the probe
     // timed it; what its first round leaves pays for further rounds.
     let affordable = match whole_spp {
-        Some(spp) => auto::MAX_PILOT_SHARE * f64::from(spp) * f64::from(width) * f64::from(height),
+        Some(spp) => auto::pilot_sample_share(width, height, spp),
         None => most_pixels * auto::pilot_samples_per_pixel(&plan.trials),
     };
     let extension_renders = auto::extension_renders(&plan.trials, thumbnail, affordable);
