@@ -3,7 +3,7 @@
 //! ```text
 //! strata render SCENE.xml [-o|--out OUT.exr] [--spp N] [--time SECONDS]
 //!               [--integrator reference|nee|mis|ris|auto|path] [--sampler independent|stratified|bluenoise|sobol]
-//!               [--rr on|off] [--adaptive [on|off]] [--light-tracing] [--path-reuse [off|2|4]] [--max-depth N] [--seed N]
+//!               [--rr on|off] [--lights uniform|power|ris|all] [--adaptive [on|off]] [--light-tracing] [--path-reuse [off|2|4]] [--max-depth N] [--seed N]
 //!               [-t|--threads N] [--width W --height H] [--png OUT.png] [--exposure STOPS]
 //!               [--stats OUT.json] [--state STATE] [--resume STATE] [--samples START..END]
 //!               [-D NAME=VALUE ...] [-q|--quiet]
@@ -116,6 +116,35 @@ impl Switch {
     }
 }
 
+/// How next event estimation chooses the light it samples (`--lights`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LightsFlag {
+    /// Every light equally likely.
+    Uniform,
+    /// In proportion to the lights' emitted power.
+    Power,
+    /// Resampled importance sampling: 4 candidates drawn by power, one kept by the light it
+    /// could bring to the shading point.
+    Ris,
+    /// No choice: a sample of every light at every vertex, one shadow ray per light.
+    All,
+}
+
+impl LightsFlag {
+    /// The light selection this flag names.
+    pub fn selection(self) -> integrators::LightSelection {
+        use integrators::LightSelection;
+        match self {
+            Self::Uniform => LightSelection::Uniform,
+            Self::Power => LightSelection::Power,
+            Self::Ris => LightSelection::Ris {
+                candidates: crate::plan::RIS_CANDIDATES,
+            },
+            Self::All => LightSelection::All,
+        }
+    }
+}
+
 /// `strata render`: flags override the scene file's settings; absent flags keep them.
 #[derive(Debug, Args, PartialEq)]
 pub struct RenderArgs {
@@ -145,6 +174,11 @@ pub struct RenderArgs {
     /// Russian roulette on or off, on top of the preset.
     #[arg(long, value_enum)]
     pub rr: Option<Switch>,
+    /// How next event estimation chooses its light, over the preset's: in proportion to
+    /// power, uniformly, by RIS, or `all` (a sample of every light at every vertex). `auto`
+    /// measures these on the scene unless this is given.
+    #[arg(long, value_enum)]
+    pub lights: Option<LightsFlag>,
     /// Adaptive sampling (`on` when given without a value): a pilot render (1/16 of the
     /// budget, 2 to 16 samples per pixel, not part of the image) estimates each pixel's
     /// relative noise, and pixels get samples in proportion to it, which minimises the relative

@@ -154,6 +154,9 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
     if let (Transport::Path(settings), Some(rr)) = (&mut transport, args.rr) {
         settings.russian_roulette = if rr.is_on() { roulette } else { None };
     }
+    if let (Transport::Path(settings), Some(lights)) = (&mut transport, args.lights) {
+        settings.light_selection = lights.selection();
+    }
     let is_auto = preset == IntegratorPreset::Auto;
     let mut trials = Trials::default();
     if let Transport::Path(settings) = &mut transport {
@@ -179,8 +182,10 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         // a pilot's choice could differ between them. What the user pinned is not tried.
         if is_auto && args.state.is_none() && args.resume.is_none() {
             let lights = features.lights_sampled_under_mis();
-            let many_lights =
-                settings.sample_lights && lights >= 2 && settings.direct_samples.is_none();
+            let many_lights = settings.sample_lights
+                && lights >= 2
+                && settings.direct_samples.is_none()
+                && args.lights.is_none();
             let reusing = PathSettings {
                 path_reuse: Some(PathReuse {
                     block: auto::REUSE_BLOCK,
