@@ -253,6 +253,7 @@ fn choose_techniques(
                 let context = Context {
                     view,
                     caustics_left_out,
+                    shared_positions: Some(auto::position_seed(plan.seed, round)),
                     ..Context::new(scene, &pilot_plan, filter, &quiet, &count)
                 };
                 images.push(render_sampled(&context)?.film.to_image());
@@ -514,6 +515,9 @@ struct Context<'a, T> {
     /// tracer leaves out the paths light tracing would contribute, whose variance the pilot
     /// estimates from light paths ([`crate::caustic_variance`]).
     caustics_left_out: bool,
+    /// For `auto`'s pilot: the seed of film positions that the two renders of a round share
+    /// (see [`auto::position_seed`]), instead of the sampler's.
+    shared_positions: Option<u32>,
 }
 
 impl<'a, T> Context<'a, T> {
@@ -538,6 +542,7 @@ impl<'a, T> Context<'a, T> {
             finish,
             pilot_costs: None,
             caustics_left_out: false,
+            shared_positions: None,
         }
     }
 }
@@ -564,6 +569,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         options,
         finish,
         pilot_costs: costs,
+        shared_positions,
         ..
     } = *context;
     let world = &scene.world;
@@ -628,7 +634,11 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     // The camera ray of `pixel`'s sample `sample_index`, and where on the film it starts.
     let camera_ray = |sampler: &mut S, pixel: UVec2, sample_index: u32| {
         sampler.start_pixel_sample(pixel, sample_index);
-        let u = sampler.next_2d();
+        let mut u = sampler.next_2d();
+        if let Some(seed) = shared_positions {
+            let mut shared = sampling::Rng::for_sample(pixel, sample_index, seed);
+            u = Vec2::new(shared.next_f32(), shared.next_f32());
+        }
         let film_position = if uniform_in_pixel {
             Splatter::film_position(pixel, u)
         } else {
