@@ -30,10 +30,10 @@
 //!   pixel (so every candidate is weighed by the same denominator, that of relMSE);
 //!   `(a − b)² / 2` is an unbiased estimate of a pixel's variance whatever the pixels share
 //!   (light tracing splats into many pixels, path reuse correlates the pixels of a block).
-//!   The two renders take their camera samples at the same film positions
-//!   ([`position_seed`]), so this is the variance of the paths alone: the noise of where in a
-//!   pixel a sample falls, the same for every candidate and mostly removed by the image's many
-//!   stratified samples, is left out;
+//!   The two renders take the same camera samples (film position, lens point, time:
+//!   [`camera_sample_seed`]), so this is the variance of the paths alone: the noise of where
+//!   in a pixel (on the lens, in the shutter) a sample falls, the same for every candidate and
+//!   mostly removed by the image's many stratified samples, is left out;
 //! - its cost `C` is counted, not timed, so that the choice, and so the image, is the same on any
 //!   machine and thread count: closest-hit rays, occlusion rays, samples and RIS candidate
 //!   evaluations weighted by [`Cost`];
@@ -369,13 +369,14 @@ pub fn pilot_seed(seed: u32, replica: u32) -> u32 {
     sampling::rng::wang_hash(seed ^ 0x5EED_0A70 ^ (replica << 4))
 }
 
-/// Seed of the film positions of pilot round `round` for a render seeded with `seed`: both
-/// renders of a round, and every candidate, take their camera samples at the same positions
-/// (independent uniform in each pixel), so that `(a − b)² / 2` measures the noise of the paths
-/// alone. The noise of where in a pixel a sample falls, which every candidate shares, is left
-/// out: the image's many stratified samples remove most of it, and in the pilot's few samples
-/// and large thumbnail pixels it drowned what tells candidates apart.
-pub fn position_seed(seed: u32, round: u32) -> u32 {
+/// Seed of the camera samples of pilot round `round` for a render seeded with `seed`: both
+/// renders of a round, and every candidate, take their camera samples (film position, lens
+/// point, time; independent uniform numbers) from it, so that `(a − b)² / 2` measures the noise
+/// of the paths alone. The noise of where in a pixel, on the lens and in the shutter a sample
+/// falls, which every candidate shares, is left out: the image's many stratified samples remove
+/// most of it, and in the pilot's few samples and large thumbnail pixels it drowned what tells
+/// candidates apart.
+pub fn camera_sample_seed(seed: u32, round: u32) -> u32 {
     pilot_seed(seed ^ 0xF11E_0000, round_replicas(round)[0])
 }
 

@@ -253,7 +253,7 @@ fn choose_techniques(
                 let context = Context {
                     view,
                     caustics_left_out,
-                    shared_positions: Some(auto::position_seed(plan.seed, round)),
+                    shared_camera_samples: Some(auto::camera_sample_seed(plan.seed, round)),
                     ..Context::new(scene, &pilot_plan, filter, &quiet, &count)
                 };
                 images.push(render_sampled(&context)?.film.to_image());
@@ -515,9 +515,10 @@ struct Context<'a, T> {
     /// tracer leaves out the paths light tracing would contribute, whose variance the pilot
     /// estimates from light paths ([`crate::caustic_variance`]).
     caustics_left_out: bool,
-    /// For `auto`'s pilot: the seed of film positions that the two renders of a round share
-    /// (see [`auto::position_seed`]), instead of the sampler's.
-    shared_positions: Option<u32>,
+    /// For `auto`'s pilot: the seed of the camera samples (film position, lens point, time)
+    /// that the two renders of a round share ([`auto::camera_sample_seed`]), in place of the
+    /// sampler's.
+    shared_camera_samples: Option<u32>,
 }
 
 impl<'a, T> Context<'a, T> {
@@ -542,7 +543,7 @@ impl<'a, T> Context<'a, T> {
             finish,
             pilot_costs: None,
             caustics_left_out: false,
-            shared_positions: None,
+            shared_camera_samples: None,
         }
     }
 }
@@ -569,7 +570,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
         options,
         finish,
         pilot_costs: costs,
-        shared_positions,
+        shared_camera_samples,
         ..
     } = *context;
     let world = &scene.world;
@@ -635,25 +636,33 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
     let camera_ray = |sampler: &mut S, pixel: UVec2, sample_index: u32| {
         sampler.start_pixel_sample(pixel, sample_index);
         let mut u = sampler.next_2d();
-        if let Some(seed) = shared_positions {
-            let mut shared = sampling::Rng::for_sample(pixel, sample_index, seed);
-            u = Vec2::new(shared.next_f32(), shared.next_f32());
-        }
-        let film_position = if uniform_in_pixel {
-            Splatter::film_position(pixel, u)
-        } else {
-            filter.sample_film_position(pixel, u, width, height)
-        };
-        let u_lens = if has_lens {
+        let mut u_lens = if has_lens {
             sampler.next_2d()
         } else {
             Vec2::ZERO
         };
         // The time the whole path sees the scene at, uniform over the shutter.
-        let time = match (has_motion, time_seed) {
+        let mut time = match (has_motion, time_seed) {
             (false, _) => 0.0,
             (true, None) => sampler.next_1d(),
             (true, Some(seed)) => sampling::Rng::for_sample(pixel, sample_index, seed).next_f32(),
+        };
+        // `auto`'s pilot: numbers its renders share, in place of the sampler's (drawn all the
+        // same, so that the path's dimensions stay where they are).
+        if let Some(seed) = shared_camera_samples {
+            let mut shared = sampling::Rng::for_sample(pixel, sample_index, seed);
+            u = Vec2::new(shared.next_f32(), shared.next_f32());
+            if has_lens {
+                u_lens = Vec2::new(shared.next_f32(), shared.next_f32());
+            }
+            if has_motion {
+                time = shared.next_f32();
+            }
+        }
+        let film_position = if uniform_in_pixel {
+            Splatter::film_position(pixel, u)
+        } else {
+            filter.sample_film_position(pixel, u, width, height)
         };
         let mut camera_ray = if has_motion && camera.moves() {
             camera.at_time(time).generate_ray(film_position, u_lens)
