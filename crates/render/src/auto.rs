@@ -94,9 +94,6 @@ pub const MAX_PILOT_SHARE: f64 = 0.1;
 /// Block edge of path reuse when `auto` tries it (4 × 4 blocks share the most paths).
 pub const REUSE_BLOCK: u32 = 4;
 
-/// Candidates per RIS light choice when `auto` tries it.
-pub const RIS_CANDIDATES: u32 = 4;
-
 /// Edge, in thumbnail pixels, of the blocks whose mean variance terms are the independent
 /// units of the pilot's standard errors (path reuse correlates the pixels of a 4 × 4 block).
 const UNIT_BLOCK: u32 = 4;
@@ -128,7 +125,7 @@ pub const COST: Cost = Cost {
 /// against the base settings.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Trials {
-    /// RIS light selection ([`RIS_CANDIDATES`] candidates) instead of power-proportional.
+    /// RIS light selection ([`crate::plan::RIS_CANDIDATES`] candidates) instead of power-proportional.
     pub ris: bool,
     /// Uniform light selection instead of power-proportional (Mitsuba's default): power
     /// overrates lights whose power mostly misses the scene, such as an environment around a
@@ -200,7 +197,7 @@ impl Switch {
         match self {
             Switch::Ris => PathSettings {
                 light_selection: LightSelection::Ris {
-                    candidates: RIS_CANDIDATES,
+                    candidates: crate::plan::RIS_CANDIDATES,
                 },
                 ..settings
             },
