@@ -80,6 +80,14 @@ impl SignedDensity {
     fn at(&self, x: f32) -> f32 {
         self.table.signed_pdf(x)
     }
+
+    /// The densities at `x`, `x − 1`, … into `out`, as [`Self::at`] up to `f32` rounding, in
+    /// one look-up of the position within a segment where the table allows
+    /// ([`FilterTable::signed_pdf_steps`]); `false`, writing nothing, where it does not.
+    #[inline]
+    fn at_steps(&self, x: f32, out: &mut [f32]) -> bool {
+        self.table.signed_pdf_steps(x, out)
+    }
 }
 
 /// The splat weights along one image axis.
@@ -156,9 +164,15 @@ impl AxisWeights {
             .inv_mass
             .get(first as usize..=last as usize)
             .unwrap_or(&[]);
-        for ((weight, &inv_mass), p) in weights.iter_mut().zip(masses).zip(first..) {
-            let offset = x - (p as f32 + 0.5);
-            *weight = density.at(offset) * inv_mass;
+        let weights = &mut weights[..masses.len()];
+        // The first target's centre lies furthest left of `x`, each next one a pixel closer.
+        if !density.at_steps(x - (first as f32 + 0.5), weights) {
+            for (weight, p) in weights.iter_mut().zip(first..) {
+                *weight = density.at(x - (p as f32 + 0.5));
+            }
+        }
+        for (weight, &inv_mass) in weights.iter_mut().zip(masses) {
+            *weight *= inv_mass;
         }
         (first, masses.len())
     }
@@ -284,6 +298,39 @@ mod tests {
             }
         }
         assert!(SignedDensity::new(&Filter::Box).is_none());
+    }
+
+    #[test]
+    fn densities_a_pixel_apart_are_found_together_where_the_table_allows() {
+        // Whole nodes per pixel: Mitsuba's gaussian, the cubics, Lanczos, the unit tent.
+        let stepped = [
+            Filter::gaussian(0.5).unwrap(),
+            Filter::mitchell(1.0 / 3.0, 1.0 / 3.0).unwrap(),
+            Filter::lanczos(3).unwrap(),
+            Filter::tent(1.0).unwrap(),
+        ];
+        for filter in &stepped {
+            let density = SignedDensity::new(filter).unwrap();
+            let peak = density.at(0.0).abs();
+            let span = 2 * (filter.radius() + 0.5).ceil() as usize + 1;
+            for k in 0..=1000 {
+                // From beyond the right end to the left one, off the nodes.
+                let x = filter.radius() + 1.0
+                    - 2.0 * (filter.radius() + 1.0) * (k as f32 + 0.31) / 1001.0;
+                let mut stepped = vec![f32::NAN; span];
+                assert!(density.at_steps(x, &mut stepped), "{filter:?}");
+                for (j, &ours) in stepped.iter().enumerate() {
+                    let expected = density.at(x - j as f32);
+                    assert!(
+                        (ours - expected).abs() <= 1e-5 * peak,
+                        "{filter:?} at {x} − {j}: {ours} against {expected}"
+                    );
+                }
+            }
+        }
+        // 512 segments over 2.4 pixels: not a whole number per pixel.
+        let density = SignedDensity::new(&Filter::gaussian(0.3).unwrap()).unwrap();
+        assert!(!density.at_steps(0.2, &mut [0.0; 3]));
     }
 
     #[test]

@@ -27,6 +27,9 @@ pub(super) struct FilterTable {
     /// for every weight of every splatted camera sample, so they multiply rather than divide.
     inv_total: f32,
     inv_spacing: f32,
+    /// Nodes per pixel, `1 / h`, where it is a whole number: offsets a pixel apart then lie at
+    /// the same place in their segments ([`Self::signed_pdf_steps`]).
+    nodes_per_pixel: Option<usize>,
     /// Integral of the interpolant of `f₁` from `-r` to each node, divided by `total`.
     signed_cdf: Vec<f32>,
     /// Whether some node value is negative.
@@ -62,6 +65,11 @@ impl FilterTable {
             total: sum as f32,
             inv_total: (1.0 / sum) as f32,
             inv_spacing: (segments as f64 / (2.0 * f64::from(radius))) as f32,
+            nodes_per_pixel: {
+                let per_pixel = segments as f64 / (2.0 * f64::from(radius));
+                (per_pixel >= 1.0 && (per_pixel - per_pixel.round()).abs() <= 1e-9 * per_pixel)
+                    .then_some(per_pixel.round() as usize)
+            },
             negative_lobes: values.iter().any(|&v| v < 0.0),
             values,
         }
@@ -105,6 +113,36 @@ impl FilterTable {
         };
         let (f0, f1) = (self.values[i], self.values[i + 1]);
         (f0 + (f1 - f0) * s) * self.inv_total
+    }
+
+    /// [`Self::signed_pdf`] at the offsets `x`, `x − 1`, `x − 2`, … (pixels), one per entry of
+    /// `out`, where the table has a whole number of nodes per pixel: their segments are then a
+    /// fixed number of nodes apart and share the position within them, found once (equal to
+    /// the offsets' own up to `f32` rounding). Returns `false`, writing nothing, for other
+    /// tables.
+    #[inline]
+    pub(super) fn signed_pdf_steps(&self, x: f32, out: &mut [f32]) -> bool {
+        let Some(step) = self.nodes_per_pixel else {
+            return false;
+        };
+        let position = (x + self.radius) * self.inv_spacing;
+        if position.is_nan() || position < 0.0 {
+            // At or beyond the support's left end, and the later offsets further still.
+            out.fill(0.0);
+            return true;
+        }
+        let node = position as usize;
+        let s = position - node as f32;
+        for (k, value) in out.iter_mut().enumerate() {
+            let segment = node
+                .checked_sub(k * step)
+                .and_then(|i| self.values.get(i..=i + 1));
+            *value = match segment {
+                Some(&[f0, f1]) => (f0 + (f1 - f0) * s) * self.inv_total,
+                _ => 0.0,
+            };
+        }
+        true
     }
 
     /// The CDF of [`Self::pdf`] at offset `x`: exactly 0 at and below `-radius`, exactly 1 at
