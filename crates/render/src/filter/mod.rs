@@ -401,6 +401,11 @@ impl Filter {
     /// [`Self::sample_weight`]: 1 for filters without negative lobes.
     pub fn sample_film_position(&self, pixel: UVec2, u: Vec2, width: u32, height: u32) -> Vec2 {
         let centre = pixel.as_vec2() + Vec2::splat(0.5);
+        if let Self::Box = self {
+            // A pixel's own box lies inside the image: the centre plus `sample(u)`, without the
+            // dispatch and the test of the image's edges per axis.
+            return centre + (u - Vec2::splat(0.5));
+        }
         centre
             + Vec2::new(
                 self.sample_axis(u.x, centre.x, width),
