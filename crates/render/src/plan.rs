@@ -13,10 +13,10 @@ use sampling::sampler::SamplerKind;
 use scene::{IntegratorDesc, IntegratorPreset, RenderScene, SceneDesc, SceneFeatures};
 
 /// Candidates per RIS light choice in the `ris` preset, in `auto`'s trial of RIS and with
-/// `--lights ris`. Measured
-/// on the many-lights scene at 32 spp (efficiency relative to power-proportional selection): 4
-/// candidates 1.41x with the independent sampler and 1.87x with blue noise, 8 candidates 1.34x
-/// and 1.64x (each candidate costs about 4% of a path there).
+/// `--lights ris`. Measured on the many-lights scene at 32 spp (efficiency relative to
+/// power-proportional selection): 4 candidates 1.41x with the independent sampler and 1.87x
+/// with blue noise, 8 candidates 1.34x and 1.64x (each candidate costs about 4% of a path
+/// there).
 pub const RIS_CANDIDATES: u32 = 4;
 
 /// Samples per pixel from which `auto` turns adaptive sampling on by itself: its pilot then

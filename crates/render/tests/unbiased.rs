@@ -54,8 +54,7 @@ use common::compare::{Replicates, check_unbiased, compare};
 use common::{Configuration, configurations_with, load_version, mis_power, scenes_dir};
 use integrators::{LightSelection, LightTracer, Mis, PathReuse, PathSettings};
 use render::auto::{REUSE_BLOCK, Trials};
-use render::plan::RIS_CANDIDATES;
-use render::plan::{RenderPlan, Transport, plan_from_flags};
+use render::plan::{RIS_CANDIDATES, RenderPlan, Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
 use scene::RenderScene;
 

@@ -57,6 +57,8 @@ impl FilterTable {
             cumulative.push(sum);
             signed.push(signed_sum);
         }
+        // Segments per pixel, `1 / h`.
+        let per_pixel = segments as f64 / (2.0 * f64::from(radius));
         Self {
             radius,
             segments,
@@ -64,12 +66,10 @@ impl FilterTable {
             signed_cdf: signed.iter().map(|c| (c / sum) as f32).collect(),
             total: sum as f32,
             inv_total: (1.0 / sum) as f32,
-            inv_spacing: (segments as f64 / (2.0 * f64::from(radius))) as f32,
-            nodes_per_pixel: {
-                let per_pixel = segments as f64 / (2.0 * f64::from(radius));
-                (per_pixel >= 1.0 && (per_pixel - per_pixel.round()).abs() <= 1e-9 * per_pixel)
-                    .then_some(per_pixel.round() as usize)
-            },
+            inv_spacing: per_pixel as f32,
+            nodes_per_pixel: (per_pixel >= 1.0
+                && (per_pixel - per_pixel.round()).abs() <= 1e-9 * per_pixel)
+                .then_some(per_pixel.round() as usize),
             negative_lobes: values.iter().any(|&v| v < 0.0),
             values,
         }
