@@ -204,13 +204,21 @@ fn choose_techniques(
             ),
         });
     };
-    // The samples the pilot may take: a share of the image's, or of the time as the probe
-    // timed it; what its first round leaves pays for further rounds.
-    let affordable = match whole_spp {
-        Some(spp) => auto::pilot_sample_share(width, height, spp),
-        None => most_pixels * auto::pilot_samples_per_pixel(&plan.trials),
+    // What the first round leaves of the pilot's share pays for further rounds: a share of the
+    // image's samples, or of the time, counting what the first round took.
+    let first_round_start = std::time::Instant::now();
+    let extension_renders = || match (whole_spp, plan.budget.max_seconds) {
+        (Some(spp), _) => {
+            let affordable = auto::pilot_sample_share(width, height, spp);
+            auto::extension_renders(&plan.trials, thumbnail, affordable)
+        }
+        (None, Some(budget_seconds)) => auto::extension_renders_in_time(
+            &plan.trials,
+            first_round_start.elapsed().as_secs_f64(),
+            auto::MAX_PILOT_SHARE * budget_seconds - start.elapsed().as_secs_f64(),
+        ),
+        (None, None) => usize::MAX,
     };
-    let extension_renders = auto::extension_renders(&plan.trials, thumbnail, affordable);
     let camera = Camera::new(&scene.desc.sensor, thumbnail.0, thumbnail.1);
     let view = View {
         camera: &camera,
