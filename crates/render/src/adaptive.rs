@@ -446,6 +446,7 @@ mod tests {
                         let rays = RayCounters {
                             rays: 4,
                             shadow_rays: 7,
+                            connection_rays: 0,
                         };
                         costs.add(UVec2::new(x, y), rays);
                     }

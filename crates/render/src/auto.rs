@@ -120,17 +120,24 @@ pub struct Cost {
     /// One RIS candidate: a light chosen, a point sampled on it and its contribution estimated,
     /// per shadow ray of the path tracer.
     pub ris_candidate: f64,
+    /// One connection of path reuse: an occlusion ray between two path vertices and two diffuse
+    /// BSDF evaluations, but no light sample.
+    pub reuse_connection: f64,
 }
 
 /// The costs the pilot counts with, from callgrind's instruction counts of 4-spp one-thread
 /// renders of the 128 × 128 Cornell box and Veach's scene: an occlusion ray took 615 and 536
 /// instructions; a closest-hit ray 828 and 580, plus the shading and sampling at its hit, about
 /// 900 and 1,250 (3.0 and 3.2 occlusion rays in all); a RIS candidate 371 and 403 (0.7); a
-/// camera sample's set-up and film update about 660 (1.1).
+/// camera sample's set-up and film update about 660 (1.1). A connection of path reuse took
+/// 0.63–1.01 occlusion rays' instructions on four scenes (the Cornell box, `gen-7-01`,
+/// `gen-9-03`, `gen-10-01`; 8 spp, one thread, callgrind, against the same render without it):
+/// counted as a shadow ray, it had overrated path reuse's cost by up to 14%.
 pub const COST: Cost = Cost {
     closest_ray: 3.0,
     sample: 1.0,
     ris_candidate: 0.7,
+    reuse_connection: 0.8,
 };
 
 /// The techniques `auto` measures on the scene before rendering it: each `true` one is tried
@@ -732,8 +739,11 @@ fn measure(
     let cost = rounds
         .iter()
         .map(|pilot| {
-            COST.closest_ray * pilot.rays.rays as f64
-                + (1.0 + COST.ris_candidate * ris_candidates) * pilot.rays.shadow_rays as f64
+            let rays = pilot.rays;
+            let light_samples = rays.shadow_rays - rays.connection_rays;
+            COST.closest_ray * rays.rays as f64
+                + (1.0 + COST.ris_candidate * ris_candidates) * light_samples as f64
+                + COST.reuse_connection * rays.connection_rays as f64
                 + COST.sample * pilot.samples as f64
         })
         .sum::<f64>()
@@ -788,7 +798,7 @@ mod tests {
             images: [image(), image()],
             rays: RayCounters {
                 rays,
-                shadow_rays: 0,
+                ..RayCounters::default()
             },
             samples: 0,
             caustic_variance: None,
@@ -970,6 +980,28 @@ mod tests {
         assert_eq!(extension_renders(&one, (64, 64), 10.0 * first), 2);
         assert_eq!(extension_renders(&one, (64, 64), f64::INFINITY), 2);
         assert_eq!(extension_renders(&one, (64, 64), 0.0), 0);
+    }
+
+    #[test]
+    fn a_connection_of_path_reuse_costs_less_than_a_light_sample() {
+        let pilot = |shadow_rays, connection_rays| PilotRenders {
+            rays: RayCounters {
+                rays: 10,
+                shadow_rays,
+                connection_rays,
+            },
+            ..renders(0.1, 10, 1)
+        };
+        let cost = |p: PilotRenders| measure("x", base(), &[p], &[[1.0; 3]; 256], SIZE).cost;
+        // Ten closest-hit rays (30 units) and forty occlusion rays, twenty of them connections.
+        let light_samples_only = cost(pilot(40, 0));
+        let with_connections = cost(pilot(40, 20));
+        assert_eq!(light_samples_only, (30.0 + 40.0) / 2.0);
+        assert_eq!(
+            with_connections,
+            (30.0 + 20.0 + 20.0 * COST.reuse_connection) / 2.0
+        );
+        assert!(with_connections < light_samples_only);
     }
 
     #[test]

@@ -17,7 +17,6 @@ use integrators::{CameraSplat, LightTracer, PathIntegrator, reference};
 use sampling::Sampler;
 use sampling::sampler::{PrefixSampler, SamplerModel, SamplerVisitor};
 use scene::{Camera, FilterDesc, RenderScene};
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 use world::{BsdfSlot, RayCounters, RayLog, RayTally};
 
@@ -51,21 +50,13 @@ pub fn render_scene(
     filter: &Filter,
     options: &RenderOptions,
 ) -> Result<(RenderOutput, RayCounters), BudgetError> {
-    let rays = AtomicU64::new(0);
-    let shadow_rays = AtomicU64::new(0);
-    let finish = |counters: &mut RayCounters| {
-        rays.fetch_add(counters.rays, Ordering::Relaxed);
-        shadow_rays.fetch_add(counters.shadow_rays, Ordering::Relaxed);
-    };
+    let total = Mutex::new(RayCounters::default());
+    let finish = |counters: &mut RayCounters| counted(&total).add(*counters);
     let output = render_image(scene, plan, filter, options, &finish)?;
-    let pilot = output
-        .auto
-        .as_ref()
-        .map_or(RayCounters::default(), |a| a.rays);
-    let counters = RayCounters {
-        rays: rays.load(Ordering::Relaxed) + pilot.rays,
-        shadow_rays: shadow_rays.load(Ordering::Relaxed) + pilot.shadow_rays,
-    };
+    let mut counters = total.into_inner().unwrap_or_else(PoisonError::into_inner);
+    if let Some(pilot) = &output.auto {
+        counters.add(pilot.rays);
+    }
     Ok((output, counters))
 }
 
@@ -225,12 +216,8 @@ fn choose_techniques(
         width: thumbnail.0,
         height: thumbnail.1,
     };
-    let rays = AtomicU64::new(0);
-    let shadow_rays = AtomicU64::new(0);
-    let count = |counters: &mut RayCounters| {
-        rays.fetch_add(counters.rays, Ordering::Relaxed);
-        shadow_rays.fetch_add(counters.shadow_rays, Ordering::Relaxed);
-    };
+    let total = Mutex::new(RayCounters::default());
+    let count = |counters: &mut RayCounters| counted(&total).add(*counters);
     // The light tracer of the base, for the caustics that candidates without it leave out.
     let base_tracer = LightTracer::new(&scene.world, &base, camera.traits())
         .filter(|_| base.light_tracing && camera.connects());
@@ -241,10 +228,7 @@ fn choose_techniques(
         thumbnail,
         extension_renders,
         |settings, round| {
-            let before = RayCounters {
-                rays: rays.load(Ordering::Relaxed),
-                shadow_rays: shadow_rays.load(Ordering::Relaxed),
-            };
+            let before = *counted(&total);
             let caustics_left_out = !settings.light_tracing && base_tracer.is_some();
             let mut images = Vec::with_capacity(2);
             for replica in auto::round_replicas(round) {
@@ -266,10 +250,7 @@ fn choose_techniques(
                 };
                 images.push(render_sampled(&context)?.film.to_image());
             }
-            let after = RayCounters {
-                rays: rays.load(Ordering::Relaxed),
-                shadow_rays: shadow_rays.load(Ordering::Relaxed),
-            };
+            let after = *counted(&total);
             // The caustics' variance, from light paths, once for every candidate that leaves them
             // out (not in a candidate's cost: the candidate traces none).
             let caustics = match &base_tracer {
@@ -306,11 +287,14 @@ fn choose_techniques(
     Ok(Some(TechniquePilot {
         choice,
         seconds: start.elapsed().as_secs_f64(),
-        rays: RayCounters {
-            rays: rays.into_inner(),
-            shadow_rays: shadow_rays.into_inner(),
-        },
+        rays: total.into_inner().unwrap_or_else(PoisonError::into_inner),
     }))
+}
+
+/// The counts of rays that the workers of a render add to (a worker that panicked leaves them
+/// whole: it adds once, when done).
+fn counted(total: &Mutex<RayCounters>) -> std::sync::MutexGuard<'_, RayCounters> {
+    total.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// Renders the image as `plan` says, with an adaptive-sampling pilot first where the plan asks
@@ -731,6 +715,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
                     let share = RayCounters {
                         rays: connections.rays / paths.len() as u64,
                         shadow_rays: connections.shadow_rays / paths.len() as u64,
+                        connection_rays: connections.connection_rays / paths.len() as u64,
                     };
                     for &pixel in pixels {
                         costs.add(pixel, share);

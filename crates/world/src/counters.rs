@@ -12,6 +12,9 @@ pub trait RayTally {
     /// An occlusion ray towards a light, traced for `0 < t < t_max` (world units; ∞ towards
     /// the environment).
     fn shadow_ray(&mut self, ray: &Ray, t_max: f32);
+    /// An occlusion ray joining two path vertices (path reuse), traced for `0 < t < t_max`:
+    /// counted as a shadow ray and, for `auto`'s costs, apart (it samples no light).
+    fn connection_ray(&mut self, ray: &Ray, t_max: f32);
     /// The rays told so far.
     fn counts(&self) -> RayCounters;
 }
@@ -21,8 +24,10 @@ pub trait RayTally {
 pub struct RayCounters {
     /// Closest-hit rays (camera and bounce rays).
     pub rays: u64,
-    /// Occlusion rays towards lights.
+    /// Occlusion rays: towards lights, and the connections of `connection_rays`.
     pub shadow_rays: u64,
+    /// Of the occlusion rays, those joining two path vertices (path reuse).
+    pub connection_rays: u64,
 }
 
 impl RayCounters {
@@ -30,6 +35,7 @@ impl RayCounters {
     pub fn add(&mut self, other: RayCounters) {
         self.rays += other.rays;
         self.shadow_rays += other.shadow_rays;
+        self.connection_rays += other.connection_rays;
     }
 
     /// The rays counted since `earlier` counts of the same tally.
@@ -37,6 +43,7 @@ impl RayCounters {
         RayCounters {
             rays: self.rays - earlier.rays,
             shadow_rays: self.shadow_rays - earlier.shadow_rays,
+            connection_rays: self.connection_rays - earlier.connection_rays,
         }
     }
 }
@@ -50,6 +57,12 @@ impl RayTally for RayCounters {
     #[inline(always)]
     fn shadow_ray(&mut self, _ray: &Ray, _t_max: f32) {
         self.shadow_rays += 1;
+    }
+
+    #[inline(always)]
+    fn connection_ray(&mut self, _ray: &Ray, _t_max: f32) {
+        self.shadow_rays += 1;
+        self.connection_rays += 1;
     }
 
     #[inline(always)]

@@ -45,6 +45,11 @@ impl RayTally for RayLog {
         self.shadow.push(ShadowRay { ray: *ray, t_max });
     }
 
+    fn connection_ray(&mut self, ray: &Ray, t_max: f32) {
+        self.counters.connection_ray(ray, t_max);
+        self.shadow.push(ShadowRay { ray: *ray, t_max });
+    }
+
     fn counts(&self) -> RayCounters {
         self.counters
     }
@@ -71,7 +76,8 @@ mod tests {
             first.counters,
             RayCounters {
                 rays: 2,
-                shadow_rays: 1
+                shadow_rays: 1,
+                connection_rays: 0,
             }
         );
         assert_eq!(second, RayLog::default());

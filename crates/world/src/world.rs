@@ -455,12 +455,12 @@ impl World {
         }
     }
 
-    /// True when nothing blocks the ray from `origin` in the unit direction `dir` for
-    /// `0 < t < t_max` (a shadow ray from [`Ray::between`], given as 16-byte vectors as
-    /// [`geometry::Rayx4::lanes`] makes them), told to `tally` as one shadow ray. Static
-    /// shapes only: not for a world with motion ([`World::has_motion`]).
+    /// True when nothing blocks the connection of two path vertices: the ray from `origin` in
+    /// the unit direction `dir` for `0 < t < t_max` (from [`Ray::between`], given as 16-byte
+    /// vectors as [`geometry::Rayx4::lanes`] makes them), told to `tally` as one connection ray.
+    /// Static shapes only: not for a world with motion ([`World::has_motion`]).
     #[inline(always)]
-    pub fn wide_ray_unoccluded(
+    pub fn connection_unoccluded(
         &self,
         origin: Vec3A,
         dir: Vec3A,
@@ -472,7 +472,7 @@ impl World {
             dir: dir.into(),
             time: 0.0,
         };
-        tally.shadow_ray(&ray, t_max);
+        tally.connection_ray(&ray, t_max);
         !self.accel.occluded_wide(origin, dir, t_max)
     }
 

@@ -67,6 +67,7 @@ pub fn raycast_limit(root: &Path, args: &[String]) -> Result<bool, String> {
         let image_rays = RayCounters {
             rays: counters.rays - pilot_rays.rays,
             shadow_rays: counters.shadow_rays - pilot_rays.shadow_rays,
+            connection_rays: counters.connection_rays - pilot_rays.connection_rays,
         };
         Ok((output.seconds - pilot_seconds, image_rays))
     };

@@ -217,7 +217,8 @@ pub fn combine(
                 let (origin, dir, t_max) = rays[lane];
                 // Path j's own second vertex is what its ray found, visible; the others are
                 // seen where their shadow ray is not blocked.
-                if 4 * group + lane != j && !world.wide_ray_unoccluded(origin, dir, t_max, tally) {
+                if 4 * group + lane != j && !world.connection_unoccluded(origin, dir, t_max, tally)
+                {
                     pdf[lane] = 0.0;
                 }
             }
@@ -362,6 +363,7 @@ mod tests {
             assert_close(radiance[i], expected, &format!("path {i}"));
         }
         assert_eq!(tally.shadow_rays, 2, "one shadow ray per shared connection");
+        assert_eq!(tally.connection_rays, 2, "counted as connections");
     }
 
     #[test]
