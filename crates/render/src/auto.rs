@@ -776,6 +776,15 @@ mod tests {
         }
     }
 
+    /// [`choose`] on a thumbnail of [`SIZE`] with no limit on further rounds.
+    fn choose_unbounded<E>(
+        base: PathSettings,
+        trials: &Trials,
+        render: impl FnMut(&PathSettings, u32) -> Result<PilotRenders, E>,
+    ) -> Result<AutoChoice, E> {
+        choose(base, trials, SIZE, || usize::MAX, render)
+    }
+
     /// Two renders whose pixels are 1 ± `spread` (independent per pixel, from `seed`), at cost
     /// `rays` closest-hit rays.
     fn renders(spread: f32, rays: u64, seed: u32) -> PilotRenders {
@@ -812,19 +821,13 @@ mod tests {
             path_reuse: true,
             ..Trials::default()
         };
-        let choice = choose(
-            base(),
-            &trials,
-            SIZE,
-            || usize::MAX,
-            |s, round| {
-                Ok::<_, ()>(if s.path_reuse.is_some() {
-                    renders(0.1 / 2f32.sqrt(), 100, 2 + 16 * round)
-                } else {
-                    renders(0.1, 100, 1 + 16 * round)
-                })
-            },
-        )
+        let choice = choose_unbounded(base(), &trials, |s, round| {
+            Ok::<_, ()>(if s.path_reuse.is_some() {
+                renders(0.1 / 2f32.sqrt(), 100, 2 + 16 * round)
+            } else {
+                renders(0.1, 100, 1 + 16 * round)
+            })
+        })
         .unwrap();
         assert_eq!(choice.label, "+path-reuse");
         assert!(choice.settings.path_reuse.is_some());
@@ -840,19 +843,13 @@ mod tests {
             path_reuse: true,
             ..Trials::default()
         };
-        let choice = choose(
-            base(),
-            &trials,
-            SIZE,
-            || usize::MAX,
-            |s, round| {
-                Ok::<_, ()>(if s.path_reuse.is_some() {
-                    renders(0.1 / 2f32.sqrt(), 400, 2 + 16 * round)
-                } else {
-                    renders(0.1, 100, 1 + 16 * round)
-                })
-            },
-        )
+        let choice = choose_unbounded(base(), &trials, |s, round| {
+            Ok::<_, ()>(if s.path_reuse.is_some() {
+                renders(0.1 / 2f32.sqrt(), 400, 2 + 16 * round)
+            } else {
+                renders(0.1, 100, 1 + 16 * round)
+            })
+        })
         .unwrap();
         assert_eq!(choice.label, "base");
         assert_eq!(choice.settings, base());
@@ -867,18 +864,12 @@ mod tests {
         };
         (0..400)
             .filter(|seed| {
-                let choice = choose(
-                    base(),
-                    &trials,
-                    SIZE,
-                    || usize::MAX,
-                    |s, round| {
-                        let ris = s.light_selection != LightSelection::Power;
-                        let spread = if ris { 0.1 * ratio.sqrt() } else { 0.1 };
-                        let seed = seed * 2 + u32::from(ris) + 1 + 1000 * round;
-                        Ok::<_, ()>(renders(spread, 100, seed))
-                    },
-                )
+                let choice = choose_unbounded(base(), &trials, |s, round| {
+                    let ris = s.light_selection != LightSelection::Power;
+                    let spread = if ris { 0.1 * ratio.sqrt() } else { 0.1 };
+                    let seed = seed * 2 + u32::from(ris) + 1 + 1000 * round;
+                    Ok::<_, ()>(renders(spread, 100, seed))
+                })
                 .unwrap();
                 choice.label != "base"
             })
@@ -928,27 +919,21 @@ mod tests {
         let (mut chosen, mut extended) = (0, 0);
         for seed in 0..20 {
             let mut calls = 0;
-            let choice = choose(
-                base(),
-                &trials,
-                SIZE,
-                || usize::MAX,
-                |s, round| {
-                    calls += 1;
-                    let ris = s.light_selection != LightSelection::Power;
-                    let worse = s.russian_roulette.is_none() || s.path_reuse.is_some();
-                    let spread = match (ris, worse) {
-                        (false, false) => 0.1,
-                        (true, false) => 0.1 * 0.8f32.sqrt(),
-                        (false, true) => 0.1 * 1.5f32.sqrt(),
-                        (true, true) => unreachable!("no combination is kept"),
-                    };
-                    let which = u32::from(ris)
-                        + 2 * u32::from(s.russian_roulette.is_none())
-                        + 4 * u32::from(s.path_reuse.is_some());
-                    Ok::<_, ()>(renders(spread, 100, 1 + seed * 8 + which + 400 * round))
-                },
-            )
+            let choice = choose_unbounded(base(), &trials, |s, round| {
+                calls += 1;
+                let ris = s.light_selection != LightSelection::Power;
+                let worse = s.russian_roulette.is_none() || s.path_reuse.is_some();
+                let spread = match (ris, worse) {
+                    (false, false) => 0.1,
+                    (true, false) => 0.1 * 0.8f32.sqrt(),
+                    (false, true) => 0.1 * 1.5f32.sqrt(),
+                    (true, true) => unreachable!("no combination is kept"),
+                };
+                let which = u32::from(ris)
+                    + 2 * u32::from(s.russian_roulette.is_none())
+                    + 4 * u32::from(s.path_reuse.is_some());
+                Ok::<_, ()>(renders(spread, 100, 1 + seed * 8 + which + 400 * round))
+            })
             .unwrap();
             let [base, ris, roulette, reuse] = &choice.measured[..] else {
                 panic!("seed {seed}: {}", choice.reason());
@@ -1029,22 +1014,16 @@ mod tests {
             ..Trials::default()
         };
         let mut calls = 0;
-        let choice = choose(
-            base(),
-            &trials,
-            SIZE,
-            || usize::MAX,
-            |s, round| {
-                calls += 1;
-                let better = u32::from(s.russian_roulette.is_none())
-                    + u32::from(s.light_selection != LightSelection::Power);
-                Ok::<_, ()>(renders(
-                    0.1 / 2f32.powi(better as i32),
-                    100,
-                    calls + 16 * round,
-                ))
-            },
-        )
+        let choice = choose_unbounded(base(), &trials, |s, round| {
+            calls += 1;
+            let better = u32::from(s.russian_roulette.is_none())
+                + u32::from(s.light_selection != LightSelection::Power);
+            Ok::<_, ()>(renders(
+                0.1 / 2f32.powi(better as i32),
+                100,
+                calls + 16 * round,
+            ))
+        })
         .unwrap();
         assert_eq!(calls, 4, "base, two trials and their combination");
         assert_eq!(choice.label, "+ris-roulette");
@@ -1065,22 +1044,16 @@ mod tests {
         };
         let pixels = (SIZE.0 * SIZE.1) as usize;
         let choose_with = |unseen: f32| {
-            choose(
-                traced,
-                &trials,
-                SIZE,
-                || usize::MAX,
-                |s, round| {
-                    Ok::<_, ()>(if s.light_tracing {
-                        renders(0.1, 150, 1 + 16 * round)
-                    } else {
-                        PilotRenders {
-                            caustic_variance: Some(vec![Vec3::splat(unseen); pixels]),
-                            ..renders(0.1, 100, 2 + 16 * round)
-                        }
-                    })
-                },
-            )
+            choose_unbounded(traced, &trials, |s, round| {
+                Ok::<_, ()>(if s.light_tracing {
+                    renders(0.1, 150, 1 + 16 * round)
+                } else {
+                    PilotRenders {
+                        caustic_variance: Some(vec![Vec3::splat(unseen); pixels]),
+                        ..renders(0.1, 100, 2 + 16 * round)
+                    }
+                })
+            })
             .unwrap()
         };
         // The renders' pixels are 1 ± 0.1: a variance of 0.01. Without caustics the candidate
@@ -1106,20 +1079,14 @@ mod tests {
             path_reuse: true,
             ..Trials::default()
         };
-        let choice = choose(
-            traced,
-            &trials,
-            SIZE,
-            || usize::MAX,
-            |s, round| {
-                Ok::<_, ()>(match (s.light_tracing, s.path_reuse.is_some()) {
-                    (true, false) => renders(0.1, 100, 1 + 16 * round),
-                    (false, false) => renders(0.05, 100, 2 + 16 * round),
-                    (false, true) => renders(0.03, 100, 3 + 16 * round),
-                    (true, true) => panic!("light tracing with path reuse was rendered"),
-                })
-            },
-        )
+        let choice = choose_unbounded(traced, &trials, |s, round| {
+            Ok::<_, ()>(match (s.light_tracing, s.path_reuse.is_some()) {
+                (true, false) => renders(0.1, 100, 1 + 16 * round),
+                (false, false) => renders(0.05, 100, 2 + 16 * round),
+                (false, true) => renders(0.03, 100, 3 + 16 * round),
+                (true, true) => panic!("light tracing with path reuse was rendered"),
+            })
+        })
         .unwrap();
         assert_eq!(choice.label, "+path-reuse");
         assert!(choice.settings.path_reuse.is_some() && !choice.settings.light_tracing);
@@ -1138,20 +1105,14 @@ mod tests {
             every_light: true,
             ..Trials::default()
         };
-        let choice = choose(
-            base(),
-            &trials,
-            SIZE,
-            || usize::MAX,
-            |s, round| {
-                Ok::<_, ()>(match s.light_selection {
-                    LightSelection::Power => renders(0.1, 100, 1 + 16 * round),
-                    LightSelection::Ris { .. } => renders(0.05, 100, 2 + 16 * round),
-                    LightSelection::Uniform => renders(0.03, 100, 3 + 16 * round),
-                    LightSelection::All => renders(0.02, 100, 4 + 16 * round),
-                })
-            },
-        )
+        let choice = choose_unbounded(base(), &trials, |s, round| {
+            Ok::<_, ()>(match s.light_selection {
+                LightSelection::Power => renders(0.1, 100, 1 + 16 * round),
+                LightSelection::Ris { .. } => renders(0.05, 100, 2 + 16 * round),
+                LightSelection::Uniform => renders(0.03, 100, 3 + 16 * round),
+                LightSelection::All => renders(0.02, 100, 4 + 16 * round),
+            })
+        })
         .unwrap();
         assert_eq!(choice.label, "+every-light");
         assert_eq!(choice.settings.light_selection, LightSelection::All);
