@@ -425,7 +425,7 @@ pub fn extension_renders(trials: &Trials, (width, height): (u32, u32), affordabl
     let first = pilot_samples_per_pixel(trials) * f64::from(width) * f64::from(height);
     // A float's conversion saturates: an unbounded budget leaves `usize::MAX`.
     let left = ((affordable - first) / per_render).floor().max(0.0) as usize;
-    left.min(1 + trials.switches().len())
+    left.min(first_round_renders(trials))
 }
 
 /// How many candidate renders of further rounds fit in `seconds_left` of the pilot's time when
@@ -437,11 +437,17 @@ pub fn extension_renders_in_time(
     first_round_seconds: f64,
     seconds_left: f64,
 ) -> usize {
-    let first = 1 + trials.switches().len();
+    let first = first_round_renders(trials);
     let per_render = first_round_seconds / first as f64;
     // NaN (no time measured, none left) and negative times leave none.
     let left = (seconds_left / per_render).floor().max(0.0) as usize;
     left.min(first)
+}
+
+/// Candidate renders (pairs of [`PILOT_SPP`]-spp renders) of the pilot's first round for
+/// `trials`: the base and one per trial.
+fn first_round_renders(trials: &Trials) -> usize {
+    1 + trials.switches().len()
 }
 
 /// The pilot's thumbnail for a `width × height` image rendered with `trials` at `spp` samples

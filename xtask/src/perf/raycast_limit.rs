@@ -64,12 +64,7 @@ pub fn raycast_limit(root: &Path, args: &[String]) -> Result<bool, String> {
             .auto
             .as_ref()
             .map_or((0.0, RayCounters::default()), |a| (a.seconds, a.rays));
-        let image_rays = RayCounters {
-            rays: counters.rays - pilot_rays.rays,
-            shadow_rays: counters.shadow_rays - pilot_rays.shadow_rays,
-            connection_rays: counters.connection_rays - pilot_rays.connection_rays,
-        };
-        Ok((output.seconds - pilot_seconds, image_rays))
+        Ok((output.seconds - pilot_seconds, counters.since(pilot_rays)))
     };
 
     let (recorded, log) = pool(threads)?
