@@ -16,7 +16,7 @@
 //! Each error is the mean over several seeds, each time the median; the machine should be quiet.
 
 use integrators::reference::ReferenceSettings;
-use integrators::{LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
+use integrators::{LightSelection, LightTracing, Mis, PathReuse, PathSettings, RussianRoulette};
 use render::auto::REUSE_BLOCK;
 use render::driver::RenderOptions;
 use render::image::Image;
@@ -123,7 +123,7 @@ impl Subject {
             mis: Mis::Power,
             light_selection: LightSelection::Power,
             russian_roulette: None,
-            light_tracing: false,
+            light_tracing: None,
             direct_samples: None,
             skip_null_vertices: self.scene.desc.integrator.skip_null_vertices,
             path_reuse: None,
@@ -574,7 +574,7 @@ fn light_tracing_on_the_glass_box(root: &Path) -> Result<Claim, String> {
     let subject = Subject::load(root, "cbox-glass")?;
     let without = subject.mis_with_roulette();
     let with = PathSettings {
-        light_tracing: true,
+        light_tracing: Some(LightTracing::SPARSE),
         ..without
     };
     switch_claim(

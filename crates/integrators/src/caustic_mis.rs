@@ -22,12 +22,13 @@
 //! W(x₁) = 1 / (A cos³θ r²) is the camera's importance at x₁ (the density per unit area of the
 //! camera ray's end, over |cos θ_cam| at x₁ towards the camera); p_bsdf(ω₁) / |cos θ₁| converts
 //! x₁'s sampled direction to area at the light; P(light) p_A(y) is the light tracer's choice of
-//! the light and its point; p_emit = cos θ_y / π is its cosine-distributed direction. One light
-//! path is traced per camera sample, so the sample counts are equal, and with
-//! r = p_LT / p_PT the weights are
+//! the light and its point; p_emit = cos θ_y / π is its cosine-distributed direction. With
+//! r = p_LT / p_PT and ρ light paths per camera sample
+//! ([`crate::LightTracing::paths_per_sample`]), the power heuristic over the two strategies'
+//! sample counts gives
 //!
 //! ```text
-//! w_LT = r² / (1 + r²)        w_PT = 1 − w_LT
+//! w_LT = (ρ r)² / (1 + (ρ r)²)        w_PT = 1 − w_LT
 //! ```
 //!
 //! Each side computes the same function of the same path, so the weights sum to one and the
@@ -60,7 +61,7 @@ pub(crate) enum CausticPaths {
 
 impl CausticPaths {
     /// The path tracer's share of the emission of `world`'s light `light` met at `hit` at the
-    /// end of a caustic chain: 1 − [`light_tracer_weight`] for a caustic one bounce from the
+    /// end of a caustic chain: 1 − [`LightPathStarts::light_tracer_weight`] for a caustic one bounce from the
     /// camera (`through_deltas`: every bounce after the first by a delta lobe; `camera_side`
     /// as [`camera_side`] gives it for the path's first vertex), else 0 or 1 as the variant
     /// says.
@@ -79,7 +80,7 @@ impl CausticPaths {
             CausticPaths::Shared(_) if !through_deltas => 0.0,
             CausticPaths::Shared(starts) => {
                 let light_side = starts.density_at(world, light, hit.ng, hit.time);
-                1.0 - light_tracer_weight(light_side, camera_side)
+                1.0 - starts.light_tracer_weight(light_side, camera_side)
             }
         }
     }
@@ -95,11 +96,14 @@ pub(crate) struct LightPathStarts {
     selection: CdfTable,
     /// The probability of each light of the world (0 for those not chosen among).
     pmf_by_light: Box<[f32]>,
+    /// Light paths traced per camera sample, ρ.
+    paths_per_sample: f32,
 }
 
 impl LightPathStarts {
-    /// The choice among `world`'s area lights; `None` without an area light with power.
-    pub(crate) fn new(world: &World) -> Option<Self> {
+    /// The choice among `world`'s area lights, for `paths_per_sample` light paths per camera
+    /// sample; `None` without an area light with power.
+    pub(crate) fn new(world: &World, paths_per_sample: f32) -> Option<Self> {
         let lights: Vec<u32> = (0..world.lights().len() as u32)
             .filter(|&i| world.lights()[i as usize].is_area())
             .collect();
@@ -116,6 +120,7 @@ impl LightPathStarts {
             lights,
             selection,
             pmf_by_light,
+            paths_per_sample,
         })
     }
 
@@ -142,6 +147,15 @@ impl LightPathStarts {
         }
         pmf * world.lights()[light as usize].pdf_emission_area(n_light, time)
     }
+
+    /// The light tracer's weight w_LT for a caustic path whose light side is `light_side` (from
+    /// [`Self::density_at`]) and whose camera side is `camera_side` (from [`camera_side`]), at
+    /// this tracer's light paths per camera sample; the path tracer's is 1 minus it. 0 where the
+    /// light tracer cannot start the path, 1 where the path tracer cannot sample it.
+    #[inline]
+    pub(crate) fn light_tracer_weight(&self, light_side: f32, camera_side: f32) -> f32 {
+        power_heuristic_weight(self.paths_per_sample * light_side, camera_side)
+    }
 }
 
 /// The path tracer's side of the densities' ratio at x₁ (see the module documentation):
@@ -154,22 +168,19 @@ pub(crate) fn camera_side(importance: f32, cos_camera: f32, pdf_bsdf: f32, cos_b
 }
 
 /// The ratio r = p_LT / p_PT of the light tracer's density of a caustic path to the path
-/// tracer's, from the two sides as [`light_tracer_weight`] takes them; 0 where either density is
-/// 0 or the ratio is not finite (the path tracer cannot find the path, or the light tracer can
-/// not start it).
+/// tracer's, per path, from the two sides as [`LightPathStarts::light_tracer_weight`] takes
+/// them; 0 where either density is 0 or the ratio is not finite (the path tracer cannot find the
+/// path, or the light tracer cannot start it).
 #[inline]
 pub(crate) fn density_ratio(light_side: f32, camera_side: f32) -> f32 {
     let ratio = FRAC_1_PI * light_side / camera_side;
     if ratio.is_finite() { ratio } else { 0.0 }
 }
 
-/// The light tracer's weight w_LT for a caustic path whose light side is `light_side` (from
-/// [`LightPathStarts::density_at`]) and whose camera side is `camera_side` (from
-/// [`camera_side`]); the path tracer's is 1 minus it. 0 where the light tracer cannot start the
-/// path, 1 where the path tracer cannot sample it.
+/// The power heuristic's w_LT = (ρ r)² / (1 + (ρ r)²), from a light side already scaled by ρ.
 #[inline]
-pub(crate) fn light_tracer_weight(light_side: f32, camera_side: f32) -> f32 {
-    // 1 / r = p_PT / p_LT; the weight is 1 / (1 + 1 / r²), which stays finite at both ends.
+fn power_heuristic_weight(light_side: f32, camera_side: f32) -> f32 {
+    // 1 / (ρ r) = p_PT / (ρ p_LT); the weight is 1 / (1 + 1 / (ρ r)²), finite at both ends.
     let inverse = camera_side / (FRAC_1_PI * light_side);
     let weight = 1.0 / (1.0 + inverse * inverse);
     if weight.is_nan() { 0.0 } else { weight }
@@ -182,14 +193,32 @@ mod tests {
     #[test]
     fn the_weights_follow_the_densities_and_stay_finite() {
         // Equal densities share the path; the light side's density is p_A / π.
-        assert!((light_tracer_weight(std::f32::consts::PI, 1.0) - 0.5).abs() < 1e-6);
+        assert!((power_heuristic_weight(std::f32::consts::PI, 1.0) - 0.5).abs() < 1e-6);
         // Ten times the density: the power heuristic's 100 / 101.
-        let w = light_tracer_weight(10.0 * std::f32::consts::PI, 1.0);
+        let w = power_heuristic_weight(10.0 * std::f32::consts::PI, 1.0);
         assert!((w - 100.0 / 101.0).abs() < 1e-6, "{w}");
-        assert_eq!(light_tracer_weight(0.0, 1.0), 0.0);
-        assert_eq!(light_tracer_weight(1.0, 0.0), 1.0);
-        assert_eq!(light_tracer_weight(0.0, 0.0), 0.0);
-        assert_eq!(light_tracer_weight(f32::INFINITY, 1.0), 1.0);
-        assert_eq!(light_tracer_weight(1.0, f32::INFINITY), 0.0);
+        assert_eq!(power_heuristic_weight(0.0, 1.0), 0.0);
+        assert_eq!(power_heuristic_weight(1.0, 0.0), 1.0);
+        assert_eq!(power_heuristic_weight(0.0, 0.0), 0.0);
+        assert_eq!(power_heuristic_weight(f32::INFINITY, 1.0), 1.0);
+        assert_eq!(power_heuristic_weight(1.0, f32::INFINITY), 0.0);
+    }
+
+    #[test]
+    fn fewer_light_paths_per_sample_weigh_the_light_tracer_less() {
+        let starts = |paths_per_sample| LightPathStarts {
+            lights: vec![0],
+            selection: CdfTable::new(&[1.0]).expect("one weight"),
+            pmf_by_light: Box::new([1.0]),
+            paths_per_sample,
+        };
+        let pi = std::f32::consts::PI;
+        // Equal densities per path: one path per sample shares, one per four gives the light
+        // tracer (1/4)² / (1 + (1/4)²) = 1/17.
+        assert!((starts(1.0).light_tracer_weight(pi, 1.0) - 0.5).abs() < 1e-6);
+        let w = starts(0.25).light_tracer_weight(pi, 1.0);
+        assert!((w - 1.0 / 17.0).abs() < 1e-6, "{w}");
+        // Four times the density per path at a quarter of the paths: shared again.
+        assert!((starts(0.25).light_tracer_weight(4.0 * pi, 1.0) - 0.5).abs() < 1e-6);
     }
 }

@@ -17,7 +17,7 @@ mod uniform_direction;
 pub use light_selection::every::MAX_EVERY_LIGHT;
 pub use light_tracer::{CameraSplat, LightTracer};
 pub use path::PathIntegrator;
-pub use settings::{DirectSamples, Mis, PathReuse, PathSettings, RussianRoulette};
+pub use settings::{DirectSamples, LightTracing, Mis, PathReuse, PathSettings, RussianRoulette};
 
 /// How [`PathSettings::light_selection`] chooses a light (defined in `lights`, re-exported here
 /// with the settings it is one of).

@@ -28,8 +28,10 @@
 //! `max_depth` ≥ 3, a camera that light paths can reach, emitters not hidden); switching it off
 //! is one of `auto`'s trials, kept only when the pilot measures it more efficient.
 //!
-//! Each light path stands for one pixel sample: with `L` paths for an `N`-pixel image, a pixel's
-//! value gains `N / L` times the sum of the paths' contributions to it (see `render::film`).
+//! One camera sample in [`crate::LightTracing::samples_per_path`] also traces a light path
+//! ([`LightTracer::path_of_sample`]): with `L` paths for an `N`-pixel image, a pixel's value
+//! gains `N / L` times the sum of the paths' contributions to it (see `render::film`), and the
+//! caustics both strategies find are weighted for that rate (`caustic_mis`).
 //!
 //! Sampler dimensions, in order, only those the scene needs (as the path tracer's): time (1D,
 //! when something moves: the whole light path, and its connections to the camera, see the
@@ -38,11 +40,11 @@
 //! thin-lens camera), the BSDF lobe (1D, when some material chooses a lobe) and direction (2D),
 //! and roulette (1D, with roulette from its start depth on).
 
-use crate::caustic_mis::{LightPathStarts, camera_side, density_ratio, light_tracer_weight};
+use crate::caustic_mis::{LightPathStarts, camera_side, density_ratio};
 use crate::optional_draw::next_1d_if;
 use crate::{PathSettings, RussianRoulette};
 use geometry::Ray;
-use glam::{Vec2, Vec3};
+use glam::{UVec2, Vec2, Vec3};
 use materials::BsdfFlags;
 use sampling::Sampler;
 use world::{BsdfSlot, CameraConnection, CameraTraits, RayTally, SurfaceHit, World};
@@ -82,6 +84,8 @@ pub struct LightTracer {
     draws_lens: bool,
     /// Whether something moves, so each light path draws a time.
     draws_time: bool,
+    /// Camera samples per light path ([`crate::LightTracing::samples_per_path`]).
+    samples_per_path: u32,
 }
 
 impl LightTracer {
@@ -90,13 +94,14 @@ impl LightTracer {
     /// when the world has no area light with power, or when `settings` hide emitters: the
     /// camera then sees through area emitters, which its connections from light paths do not
     /// (the path tracer keeps those paths). Also `None` when `settings` skip null vertices in a
-    /// world with null lobes: the tracer counts every pass through one as a vertex.
+    /// world with null lobes (the tracer counts every pass through one as a vertex), and when
+    /// `settings` have light tracing off.
     pub fn new(world: &World, settings: &PathSettings, camera: CameraTraits) -> Option<Self> {
         if settings.hide_emitters || (settings.skip_null_vertices && world.has_null_lobes()) {
             return None;
         }
         Some(Self {
-            starts: LightPathStarts::new(world)?,
+            starts: LightPathStarts::new(world, settings.light_tracing?.paths_per_sample())?,
             max_depth: settings
                 .max_depth
                 .unwrap_or(crate::reference::UNBOUNDED_DEPTH_CAP),
@@ -105,7 +110,20 @@ impl LightTracer {
             draws_lobe_choice: world.has_lobe_choice(),
             draws_lens: camera.has_lens,
             draws_time: world.has_motion() || camera.moves,
+            samples_per_path: settings.light_tracing?.samples_per_path.max(1),
         })
+    }
+
+    /// Whether the camera sample `sample_index` of `pixel` also traces a light path, and if so
+    /// that path's index among the pixel's light paths (0, 1, 2, …: the sample index its
+    /// sampler starts with). One sample in [`crate::LightTracing::samples_per_path`] does: those
+    /// whose index has the pixel's phase, (x + 2y) mod that count, so that at any sample index
+    /// the pixels that trace one are spread over the image (one in every 2 × 2 block at 4).
+    #[inline]
+    pub fn path_of_sample(&self, pixel: UVec2, sample_index: u32) -> Option<u32> {
+        let period = self.samples_per_path;
+        let phase = pixel.x.wrapping_add(pixel.y.wrapping_mul(2)) % period;
+        (sample_index % period == phase).then_some(sample_index / period)
     }
 
     /// Traces one light path with `sampler` (already started on its pixel sample) and hands each
@@ -165,6 +183,7 @@ impl LightTracer {
                 let light_side = light_side.filter(|_| through_deltas);
                 connect_to_camera(
                     world,
+                    &self.starts,
                     &surface,
                     towards_light,
                     camera,
@@ -230,10 +249,11 @@ impl LightTracer {
 /// camera and splats the path's contribution (`weight` before this vertex) if nothing blocks it.
 /// With `light_side`, the path is a caustic one bounce from the camera that the path tracer
 /// samples too, and the contribution takes the light tracer's weight against it
-/// (`caustic_mis`).
+/// (`caustic_mis`, at the light paths per camera sample of `starts`).
 #[allow(clippy::too_many_arguments)]
 fn connect_to_camera(
     world: &World,
+    starts: &LightPathStarts,
     surface: &SurfaceHit<'_>,
     towards_light: Vec3,
     camera: CameraConnection,
@@ -258,7 +278,7 @@ fn connect_to_camera(
     let (mis, ratio) = light_side.map_or((1.0, 0.0), |light_side| {
         let camera_side = camera_side(camera.importance, cos_camera, pdf_bsdf, wo.z.abs());
         (
-            light_tracer_weight(light_side, camera_side),
+            starts.light_tracer_weight(light_side, camera_side),
             density_ratio(light_side, camera_side),
         )
     });

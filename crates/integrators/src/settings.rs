@@ -68,8 +68,8 @@ pub struct PathSettings {
     /// whose last vertex before an area light is delta (light → mirror or glass → … → diffuse
     /// → camera) are left to [`crate::LightTracer`], which traces them from the lights and
     /// connects them to the camera; the path tracer drops the emission it would find along
-    /// them. The renderer must then run the light tracer too.
-    pub light_tracing: bool,
+    /// them. The renderer must then run the light tracer too. `None` for off.
+    pub light_tracing: Option<LightTracing>,
     /// Mitsuba's `direct` integrator's sample counts at the first vertex (see [`DirectSamples`]);
     /// `None` walks the path. With counts, `max_depth` must be 2 and roulette and light tracing
     /// have nothing to act on.
@@ -100,6 +100,38 @@ pub struct PathReuse {
     pub block: u32,
 }
 
+/// Caustics by light tracing (see [`crate::LightTracer`]): how many light paths the renderer
+/// traces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LightTracing {
+    /// Camera samples per light path: one camera sample in this many (1 or more) also traces a
+    /// light path, and the caustic paths both strategies find are weighted for that rate
+    /// ([`crate::caustic_mis`]). Fewer light paths cost less and leave the caustics noisier.
+    pub samples_per_path: u32,
+}
+
+impl LightTracing {
+    /// One light path per camera sample.
+    pub const DENSE: Self = Self {
+        samples_per_path: 1,
+    };
+
+    /// One light path per [`Self::SPARSE_SAMPLES_PER_PATH`] camera samples, which `auto`'s pilot
+    /// measures against [`Self::DENSE`]: where caustics are a small share of the noise, fewer
+    /// light paths buy more camera samples.
+    pub const SPARSE: Self = Self {
+        samples_per_path: Self::SPARSE_SAMPLES_PER_PATH,
+    };
+
+    /// Camera samples per light path of [`Self::SPARSE`].
+    pub const SPARSE_SAMPLES_PER_PATH: u32 = 4;
+
+    /// Light paths per camera sample, 1 / [`Self::samples_per_path`].
+    pub fn paths_per_sample(&self) -> f32 {
+        1.0 / self.samples_per_path as f32
+    }
+}
+
 impl Default for PathSettings {
     fn default() -> Self {
         Self {
@@ -110,7 +142,7 @@ impl Default for PathSettings {
             mis: Mis::Off,
             light_selection: LightSelection::Power,
             russian_roulette: None,
-            light_tracing: false,
+            light_tracing: None,
             direct_samples: None,
             skip_null_vertices: false,
             path_reuse: None,
@@ -128,7 +160,7 @@ impl PathSettings {
         self.sample_bsdf
             && self.max_depth.is_none_or(|d| d >= 3)
             && self.russian_roulette.is_none_or(|r| r.start_depth >= 2)
-            && !self.light_tracing
+            && self.light_tracing.is_none()
             && self.direct_samples.is_none()
             && !self.skip_null_vertices
     }
@@ -163,8 +195,11 @@ impl PathSettings {
         if let Some(rr) = self.russian_roulette {
             names.push(format!("russian-roulette-from-{}", rr.start_depth));
         }
-        if self.light_tracing {
-            names.push("light-tracing-caustics".to_string());
+        if let Some(LightTracing { samples_per_path }) = self.light_tracing {
+            names.push(match samples_per_path {
+                1 => "light-tracing-caustics".to_string(),
+                n => format!("light-tracing-caustics-1-per-{n}"),
+            });
         }
         if let Some(PathReuse { block }) = self.path_reuse {
             names.push(format!("path-reuse-{block}x{block}"));
@@ -209,7 +244,7 @@ mod tests {
                 ..base
             },
             PathSettings {
-                light_tracing: true,
+                light_tracing: Some(LightTracing::DENSE),
                 ..base
             },
             PathSettings {

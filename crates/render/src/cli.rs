@@ -193,9 +193,12 @@ pub struct RenderArgs {
     /// the camera instead of being found by chance, splatting into the pixels the filter
     /// reaches (through a sampled aperture point with a thin lens). Needs a delta BSDF and an
     /// area light, and emitters not hidden (`hide_emitters`); ignored otherwise.
-    /// `auto` turns it on where it applies; with another preset, this flag does.
-    #[arg(long)]
-    pub light_tracing: bool,
+    /// `auto` turns it on where it applies (and measures one light path per 4 samples against
+    /// one per sample); with another preset, this flag does. N: camera samples per light path
+    /// (one sample in N also traces one; 1 when no value is given).
+    #[arg(long, value_name = "N", num_args = 0..=1, default_missing_value = "1",
+          value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub light_tracing: Option<u32>,
     /// Path reuse: connect each pixel's first path vertex to the second vertices of the other
     /// paths of its BLOCK × BLOCK pixel block (2 or 4; 4 when no value is given), where both
     /// are diffuse (not with light tracing). `auto` turns 4 × 4 blocks on where they pay;
@@ -437,7 +440,7 @@ mod tests {
             "--light-tracing",
         ]);
         assert_eq!(r.scene, Path::new("scene.xml"));
-        assert!(r.adaptive == Some(Switch::On) && r.light_tracing);
+        assert!(r.adaptive == Some(Switch::On) && r.light_tracing == Some(1));
         assert_eq!(r.out.as_deref(), Some(Path::new("o.exr")));
         assert_eq!((r.spp, r.time), (Some(64), Some(0.5)));
         assert_eq!(r.integrator, Some(IntegratorPreset::Mis));
@@ -466,7 +469,7 @@ mod tests {
             (None, None, None, None, None)
         );
         assert_eq!((r.state, r.resume), (None, None));
-        assert!(r.adaptive.is_none() && !r.light_tracing && !r.quiet);
+        assert!(r.adaptive.is_none() && r.light_tracing.is_none() && !r.quiet);
         assert_eq!(r.exposure, 0.0);
     }
 

@@ -184,12 +184,14 @@ where
     render_with_light_paths(width, height, budget, options, init, sample, None)
 }
 
-/// Traces one light path for a pixel sample: `trace(scratch, pixel, sample_index, splats)`
-/// pushes the (pixel, value) contributions the path makes anywhere on the film onto `splats`.
-/// It must depend only on `pixel` and `sample_index`, like the sample function.
-pub type LightPaths<'a, S> = dyn Fn(&mut S, UVec2, u32, &mut Vec<(UVec2, Vec3)>) + Sync + 'a;
+/// Traces the light path of a pixel sample, if it has one: `trace(scratch, pixel,
+/// sample_index, splats)` pushes the (pixel, value) contributions the path makes anywhere on the
+/// film onto `splats` and says whether it traced a path. It must depend only on `pixel` and
+/// `sample_index`, like the sample function.
+pub type LightPaths<'a, S> =
+    dyn Fn(&mut S, UVec2, u32, &mut Vec<(UVec2, Vec3)>) -> bool + Sync + 'a;
 
-/// [`render`], also tracing one light path per pixel sample with `light_paths` (when given)
+/// [`render`], also tracing light paths for pixel samples with `light_paths` (when given)
 /// and splatting its contributions onto the film ([`Film::add_splat`]). Splats are applied
 /// after each pass in tile order, each tile's in the order traced, so the film stays
 /// bit-identical whatever the threads.
@@ -718,7 +720,8 @@ struct BlockMember {
     end: u32,
 }
 
-/// Traces the light path of `pixel`'s sample `index` and keeps its finite splats in `result`.
+/// Traces the light path of `pixel`'s sample `index`, if it has one, and keeps its finite
+/// splats in `result`.
 fn trace_light_path<S>(
     trace: &LightPaths<'_, S>,
     scratch: &mut S,
@@ -726,9 +729,11 @@ fn trace_light_path<S>(
     index: u32,
     result: &mut TileResult,
 ) {
-    result.light_paths += 1;
     let first_splat = result.splats.len();
-    trace(scratch, pixel, index, &mut result.splats);
+    if !trace(scratch, pixel, index, &mut result.splats) {
+        return;
+    }
+    result.light_paths += 1;
     let mut kept = first_splat;
     for i in first_splat..result.splats.len() {
         if result.splats[i].1.is_finite() {

@@ -7,7 +7,8 @@ use crate::driver::RenderBudget;
 use clap::Parser;
 use integrators::reference::ReferenceSettings;
 use integrators::{
-    DirectSamples, LightSelection, MAX_EVERY_LIGHT, Mis, PathReuse, PathSettings, RussianRoulette,
+    DirectSamples, LightSelection, LightTracing, MAX_EVERY_LIGHT, Mis, PathReuse, PathSettings,
+    RussianRoulette,
 };
 use sampling::sampler::SamplerKind;
 use scene::{IntegratorDesc, IntegratorPreset, RenderScene, SceneDesc, SceneFeatures};
@@ -126,7 +127,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         mis: Mis::Off,
         light_selection: LightSelection::Power,
         russian_roulette: roulette,
-        light_tracing: false,
+        light_tracing: None,
         direct_samples,
         skip_null_vertices,
         path_reuse: None,
@@ -170,8 +171,12 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         // `auto` traces caustics from the lights wherever that applies, unless the user pinned
         // path reuse (the two exclude each other); its pilot may find that switching it off pays.
         let reuse_pinned = matches!(args.path_reuse, Some(ReuseFlag::Block(_)));
-        settings.light_tracing =
-            (args.light_tracing || (is_auto && !reuse_pinned)) && tracing_applies;
+        settings.light_tracing = match args.light_tracing {
+            Some(samples_per_path) => Some(LightTracing { samples_per_path }),
+            None if is_auto && !reuse_pinned => Some(LightTracing::DENSE),
+            None => None,
+        }
+        .filter(|_| tracing_applies);
         settings.path_reuse = match args.path_reuse {
             Some(ReuseFlag::Block(block)) => Some(PathReuse { block }),
             Some(ReuseFlag::Off) | None => None,
@@ -191,7 +196,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
                 path_reuse: Some(PathReuse {
                     block: auto::REUSE_BLOCK,
                 }),
-                light_tracing: false,
+                light_tracing: None,
                 ..*settings
             };
             trials = Trials {
@@ -204,9 +209,11 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
                         .russian_roulette
                         .zip(settings.max_depth)
                         .is_some_and(|(rr, depth)| depth > rr.start_depth),
-                no_light_tracing: settings.light_tracing && !args.light_tracing,
+                no_light_tracing: settings.light_tracing.is_some() && args.light_tracing.is_none(),
+                sparse_light_paths: settings.light_tracing.is_some()
+                    && args.light_tracing.is_none(),
                 path_reuse: args.path_reuse.is_none()
-                    && !args.light_tracing
+                    && args.light_tracing.is_none()
                     && !features.has_motion
                     && features.has_diffuse_bsdfs
                     && reusing.reuse_applies(),

@@ -219,8 +219,8 @@ fn choose_techniques(
     let total = Mutex::new(RayCounters::default());
     let count = |counters: &mut RayCounters| counted(&total).add(*counters);
     // The light tracer of the base, for the caustics that candidates without it leave out.
-    let base_tracer = LightTracer::new(&scene.world, &base, camera.traits())
-        .filter(|_| base.light_tracing && camera.connects());
+    let base_tracer =
+        LightTracer::new(&scene.world, &base, camera.traits()).filter(|_| camera.connects());
     let mut caustics: Option<Vec<Vec3>> = None;
     let choice = auto::choose(
         base,
@@ -229,7 +229,7 @@ fn choose_techniques(
         extension_renders,
         |settings, round| {
             let before = *counted(&total);
-            let caustics_left_out = !settings.light_tracing && base_tracer.is_some();
+            let caustics_left_out = settings.light_tracing.is_none() && base_tracer.is_some();
             let mut images = Vec::with_capacity(2);
             for replica in auto::round_replicas(round) {
                 let pilot_plan = RenderPlan {
@@ -459,13 +459,9 @@ impl Integrators {
                 light_tracer: None,
             },
             Transport::Path(mut settings) => {
-                let light_tracer = if settings.light_tracing {
-                    LightTracer::new(world, &settings, scene.camera.traits())
-                } else {
-                    None
-                };
+                let light_tracer = LightTracer::new(world, &settings, scene.camera.traits());
                 // Without the tracer the path tracer must keep every path.
-                settings.light_tracing = light_tracer.is_some();
+                settings.light_tracing = settings.light_tracing.filter(|_| light_tracer.is_some());
                 Self {
                     integrator: BuiltTransport::Path(PathIntegrator::new(world, settings)),
                     light_tracer,
@@ -577,12 +573,15 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
                             sample_index: u32,
                             splats: &mut Vec<(UVec2, Vec3)>| {
         let Some(tracer) = &light_tracer else {
-            return;
+            return false;
+        };
+        let Some(path_index) = tracer.path_of_sample(pixel, sample_index) else {
+            return false;
         };
         // A key no image pixel has, so the light path's numbers are independent of the pixel
         // sample's own.
         let key = UVec2::new(pixel.x, pixel.y + height);
-        worker.sampler.start_pixel_sample(key, sample_index);
+        worker.sampler.start_pixel_sample(key, path_index);
         let mut add = |splat: CameraSplat| {
             filter.for_each_pixel_at(splat.film, width, height, |pixel, weight| {
                 splats.push((pixel, splat.value * weight));
@@ -601,6 +600,7 @@ fn render_with<S: Sampler + Send, T: RayTally + Default + Send>(
             &mut worker.tally,
             &mut add,
         );
+        true
     };
     let light_paths: Option<&LightPaths<'_, Worker<'_, S, T>>> =
         (costs.is_none() && light_tracer.is_some()).then_some(&trace_light_path);

@@ -62,7 +62,8 @@ pub struct StateHeader {
     pub nan_count: u64,
     /// Samples left out as infinite.
     pub inf_count: u64,
-    /// Light paths traced into the film (one per pixel sample with light tracing, else 0).
+    /// Light paths traced into the film (one per [`integrators::LightTracing::samples_per_path`]
+    /// pixel samples with light tracing, else 0).
     pub light_paths: u64,
     /// Whether the film splats camera samples (a filter wider than a pixel), so that its
     /// splatted sums follow the pixel sums. Absent (false) in files written before splatting

@@ -154,7 +154,7 @@ fn sample_counts_change_only_the_noise() {
         settings.direct_samples,
         Some(DirectSamples { light: 3, bsdf: 2 })
     );
-    assert!(!settings.light_tracing, "a caustic needs depth 3");
+    assert!(settings.light_tracing.is_none(), "a caustic needs depth 3");
     let replay = format!(
         "auto with 3 light and 2 BSDF samples, {SPP} spp seed {} against the oracle's \
          {ORACLE_SPP} spp seed {ORACLE_SEED}, {SIZE}x{SIZE}",

@@ -39,7 +39,7 @@ use std::path::Path;
 
 use common::{mis_power, render, scenes_dir, suite_scenes};
 use glam::{DVec3, UVec2};
-use integrators::{PathReuse, PathSettings};
+use integrators::{LightTracing, PathReuse, PathSettings};
 use render::plan::Transport;
 use roxmltree::Node;
 use sampling::sampler::SamplerKind;
@@ -476,7 +476,7 @@ fn renders_with(scene: &RenderScene, technique: Technique, label: &str) -> Vec<I
             ..mis
         },
         Technique::LightTracing => PathSettings {
-            light_tracing: true,
+            light_tracing: Some(LightTracing::SPARSE),
             ..mis
         },
     };

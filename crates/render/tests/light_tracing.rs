@@ -15,7 +15,7 @@ mod common;
 
 use common::{Target, film_mean, load_xml, mis_power, render, z_test};
 use glam::UVec2;
-use integrators::PathSettings;
+use integrators::{LightTracing, PathSettings};
 use render::plan::{Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
 use sampling::ztest::{sidak_alpha, two_sided_threshold};
@@ -97,7 +97,7 @@ fn light_traced_caustics_agree_with_the_path_tracer() {
     let traced = render(
         &scene,
         Transport::Path(PathSettings {
-            light_tracing: true,
+            light_tracing: Some(LightTracing::SPARSE),
             ..mis
         }),
         SamplerKind::Independent,
@@ -107,8 +107,9 @@ fn light_traced_caustics_agree_with_the_path_tracer() {
     );
     assert_eq!(
         traced.light_paths(),
-        u64::from(SIZE * SIZE * LIGHT_TRACING_SPP),
-        "one light path per pixel sample"
+        u64::from(SIZE * SIZE * LIGHT_TRACING_SPP / LightTracing::SPARSE_SAMPLES_PER_PATH),
+        "one light path per {} pixel samples",
+        LightTracing::SPARSE_SAMPLES_PER_PATH
     );
     let outcome = z_test(&traced, Target::Film(&path), 2, ALPHA);
     let (mean_traced, mean_path) = (film_mean(&traced), film_mean(&path));
@@ -161,7 +162,7 @@ fn light_traced_caustics_agree_with_the_path_tracer_through_a_thin_lens() {
     let traced = render(
         &scene,
         Transport::Path(PathSettings {
-            light_tracing: true,
+            light_tracing: Some(LightTracing::DENSE),
             ..mis
         }),
         SamplerKind::Independent,
@@ -247,7 +248,7 @@ fn light_traced_caustics_agree_with_the_path_tracer_through_wide_filters() {
                 render(
                     &scene,
                     Transport::Path(PathSettings {
-                        light_tracing: true,
+                        light_tracing: Some(LightTracing::SPARSE),
                         ..mis
                     }),
                     SamplerKind::Independent,
@@ -390,7 +391,7 @@ fn auto_traces_caustics_where_they_apply() {
         .expect("a plan")
         .transport
     {
-        Transport::Path(settings) => settings.light_tracing,
+        Transport::Path(settings) => settings.light_tracing.is_some(),
         Transport::Reference(_) => false,
     };
     let glass = load("cbox-glass.xml");

@@ -127,7 +127,7 @@ fn auto_tries_path_reuse_unless_told_and_chooses_it_on_the_cornell_box() {
         panic!("auto is a path configuration");
     };
     assert!(
-        settings.light_tracing && settings.path_reuse.is_none(),
+        settings.light_tracing.is_some() && settings.path_reuse.is_none(),
         "{settings:?}"
     );
     assert!(glass_plan.trials.no_light_tracing && glass_plan.trials.path_reuse);

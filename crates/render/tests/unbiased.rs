@@ -52,7 +52,7 @@ mod common;
 
 use common::compare::{Replicates, check_unbiased, compare};
 use common::{Configuration, configurations_with, load_version, mis_power, scenes_dir};
-use integrators::{LightSelection, LightTracer, Mis, PathReuse, PathSettings};
+use integrators::{LightSelection, LightTracer, LightTracing, Mis, PathReuse, PathSettings};
 use render::auto::{REUSE_BLOCK, Trials};
 use render::plan::{RIS_CANDIDATES, RenderPlan, Transport, plan_from_flags};
 use sampling::sampler::SamplerKind;
@@ -868,21 +868,30 @@ fn check_auto(
         ..s
     };
     let no_light_tracing = |s: PathSettings| PathSettings {
-        light_tracing: false,
+        light_tracing: None,
+        ..s
+    };
+    let sparse_light_paths = |s: PathSettings| PathSettings {
+        light_tracing: s.light_tracing.map(|_| LightTracing::SPARSE),
         ..s
     };
     let path_reuse = |s: PathSettings| PathSettings {
         path_reuse: Some(PathReuse { block: REUSE_BLOCK }),
-        light_tracing: false,
+        light_tracing: None,
         ..s
     };
     // The light selections exclude each other (the pilot keeps the best), so "every trial"
     // takes the first one on, RIS, and the others are tried on their own.
-    let switches: [Switch; 6] = [
+    let switches: [Switch; 7] = [
         (trials.ris, "+ris", &ris),
         (trials.uniform_lights, "+uniform-lights", &uniform_lights),
         (trials.every_light, "+every-light", &every_light),
         (trials.no_roulette, "-roulette", &no_roulette),
+        (
+            trials.sparse_light_paths,
+            "+sparse-light-paths",
+            &sparse_light_paths,
+        ),
         (trials.no_light_tracing, "-light-tracing", &no_light_tracing),
         (trials.path_reuse, "+path-reuse", &path_reuse),
     ];

@@ -190,7 +190,7 @@ impl Camera {
 
     /// Area of the rendered image's part of the image plane at unit distance: the whole plane's,
     /// 4 tan(fov_x / 2) tan(fov_y / 2), times the share the rendered image (a crop window) takes.
-    /// One light path is traced per pixel sample of the rendered image, not of the film.
+    /// Light paths stand for pixel samples of the rendered image, not of the film.
     fn image_plane_area(&self) -> f32 {
         let plane_area = 4.0 * self.tan_half_fov.x * self.tan_half_fov.y;
         plane_area * self.crop_size.element_product() / self.resolution.element_product()

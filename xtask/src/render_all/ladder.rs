@@ -3,7 +3,8 @@
 
 use integrators::reference::ReferenceSettings;
 use integrators::{
-    DirectSamples, LightSelection, MAX_EVERY_LIGHT, Mis, PathReuse, PathSettings, RussianRoulette,
+    DirectSamples, LightSelection, LightTracing, MAX_EVERY_LIGHT, Mis, PathReuse, PathSettings,
+    RussianRoulette,
 };
 use render::auto::{REUSE_BLOCK, Trials};
 use render::plan::{RIS_CANDIDATES, RenderPlan, Transport};
@@ -54,6 +55,7 @@ impl Configuration {
             (self.trials.every_light, "every-light"),
             (self.trials.no_roulette, "no-roulette"),
             (self.trials.no_light_tracing, "no-light-tracing"),
+            (self.trials.sparse_light_paths, "sparse-light-paths"),
             (self.trials.path_reuse, "path-reuse"),
         ];
         names.extend(
@@ -97,7 +99,7 @@ impl SceneTransport {
             mis: Mis::Power,
             light_selection: LightSelection::Power,
             russian_roulette: None,
-            light_tracing: false,
+            light_tracing: None,
             direct_samples: self.direct_samples,
             skip_null_vertices: self.skip_null_vertices,
             path_reuse: None,
@@ -258,7 +260,7 @@ pub fn ladder(
     });
     if transport.light_tracing {
         let traced = PathSettings {
-            light_tracing: true,
+            light_tracing: Some(LightTracing::SPARSE),
             ..roulette
         };
         rungs.push(Configuration {

@@ -76,10 +76,13 @@ impl PathIntegrator {
             draws_reservoir_choice: choices
                 && matches!(settings.light_selection, LightSelection::Ris { .. }),
             draws_lobe_choice: world.has_lobe_choice(),
-            caustic_paths: match LightPathStarts::new(world) {
-                _ if !settings.light_tracing => CausticPaths::Kept,
-                Some(starts) if settings.sample_bsdf => CausticPaths::Shared(starts),
-                _ => CausticPaths::Left,
+            caustic_paths: match settings
+                .light_tracing
+                .map(|tracing| LightPathStarts::new(world, tracing.paths_per_sample()))
+            {
+                None => CausticPaths::Kept,
+                Some(Some(starts)) if settings.sample_bsdf => CausticPaths::Shared(starts),
+                Some(_) => CausticPaths::Left,
             },
         }
     }

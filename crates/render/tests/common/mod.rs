@@ -7,7 +7,7 @@ pub mod compare;
 
 use glam::{UVec2, Vec3};
 use integrators::reference::ReferenceSettings;
-use integrators::{LightSelection, Mis, PathReuse, PathSettings, RussianRoulette};
+use integrators::{LightSelection, LightTracing, Mis, PathReuse, PathSettings, RussianRoulette};
 use render::driver::{RenderOptions, RenderOutput};
 use render::film::Film;
 use render::plan::{RenderPlan, Transport};
@@ -197,7 +197,7 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
         mis: Mis::Power,
         light_selection: LightSelection::Power,
         russian_roulette: None,
-        light_tracing: false,
+        light_tracing: None,
         direct_samples: None,
         skip_null_vertices: false,
         path_reuse: None,
@@ -298,7 +298,7 @@ fn switches(base: PathSettings, sampler: SamplerKind) -> Vec<Configuration> {
         switch(
             "light tracing",
             PathSettings {
-                light_tracing: true,
+                light_tracing: Some(LightTracing::SPARSE),
                 ..base
             },
         ),
