@@ -297,6 +297,7 @@ fn glass_and_mirror_cornell_box() {
             trials: Trials {
                 no_roulette: true,
                 no_light_tracing: true,
+                sparse_light_paths: true,
                 path_reuse: true,
                 ..Trials::default()
             },
@@ -416,6 +417,7 @@ fn environment_map() {
                 uniform_lights: true,
                 every_light: true,
                 no_light_tracing: true,
+                sparse_light_paths: true,
                 path_reuse: true,
                 ..Trials::default()
             },
