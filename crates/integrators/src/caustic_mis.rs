@@ -61,10 +61,10 @@ pub(crate) enum CausticPaths {
 
 impl CausticPaths {
     /// The path tracer's share of the emission of `world`'s light `light` met at `hit` at the
-    /// end of a caustic chain: 1 − [`LightPathStarts::light_tracer_weight`] for a caustic one bounce from the
-    /// camera (`through_deltas`: every bounce after the first by a delta lobe; `camera_side`
-    /// as [`camera_side`] gives it for the path's first vertex), else 0 or 1 as the variant
-    /// says.
+    /// end of a caustic chain: 1 − [`LightPathStarts::light_tracer_weight`] for a caustic one
+    /// bounce from the camera (`through_deltas`: every bounce after the first by a delta lobe;
+    /// `camera_side` as [`camera_side`] gives it for the path's first vertex), else 0 or 1 as
+    /// the variant says.
     #[inline]
     pub(crate) fn share(
         &self,

@@ -7,20 +7,20 @@
 //! scene is then a *trial* ([`Trials`]): RIS light selection, uniform light selection and a
 //! sample of every light against power-proportional selection (two or more lights), Russian
 //! roulette off against on (paths bounded beyond the roulette's start), path reuse (diffuse
-//! materials), and light tracing off against on.
+//! materials), and light tracing off or sparse against on.
 //!
-//! Caustics by light tracing are in the base wherever they apply (a delta BSDF, an area light,
-//! a camera that light paths can reach), one light path per camera sample, and the trials are
-//! to switch them *off* or to trace one light path per four camera samples
-//! ([`LightTracing::SPARSE`], cheaper where caustics are a small share of the noise): a caustic path
-//! found by chance is rare (on the glass Cornell box about one pilot sample in a thousand in the
-//! caustic's pixels), so a short pilot of the path tracer alone mostly misses the variance it
-//! causes and would underrate the technique that removes it. Switching light tracing off must
-//! therefore prove itself, like every trial, and a candidate without it (light tracing off, or
-//! path reuse) is measured without those paths, with the variance they add estimated from light
-//! paths instead ([`crate::caustic_variance`]): the expected variance, which a few samples per
-//! pixel would mostly miss. Before that estimate, switching light tracing off looked a third
-//! cheaper at no cost in noise, and `auto` rejected it where it halved the error.
+//! Caustics by light tracing are in the base wherever they apply (a delta BSDF, an area light, a
+//! camera that light paths can reach), one light path per camera sample, and the trial is to switch
+//! them *off*, because a caustic path found by chance is rare (on the glass Cornell box about one
+//! pilot sample in a thousand in the caustic's pixels), so a short pilot of the path tracer alone
+//! mostly misses the variance it causes and would underrate the technique that removes it.
+//! Switching light tracing off must therefore prove itself, like every trial, and a candidate
+//! without it (light tracing off, or path reuse) is measured without those paths, with the variance
+//! they add estimated from light paths instead ([`crate::caustic_variance`]): the expected
+//! variance, which a few samples per pixel would mostly miss. Before that estimate, switching light
+//! tracing off looked a third cheaper at no cost in noise, and `auto` rejected it where it halved
+//! the error. Another trial traces one light path per four camera samples instead
+//! ([`LightTracing::SPARSE`]): cheaper, where caustics are a small share of the noise.
 //!
 //! A
 //! *technique pilot* renders a thumbnail of the image (about [`PILOT_PIXELS`] pixels) with each

@@ -5,9 +5,9 @@
 //! # Why the sum is exact
 //!
 //! A pixel's value is `S / n + (N / L) · P`: `S` the sum of its `n` finite samples, `P` the sum
-//! of the light paths' splats onto it, `L` the light paths traced (one per
-//! `samples_per_path` pixel samples with light tracing, else none) and `N` the pixel count. The film keeps `S` and `P` exactly, in
-//! fixed point ([`crate::film::ExactSum`]), and `n` and `L` are integers, so they do not depend
+//! of the light paths' splats onto it, `L` the light paths traced (one per `samples_per_path`
+//! pixel samples with light tracing, else none) and `N` the pixel count. The film keeps `S` and
+//! `P` exactly, in fixed point ([`crate::film::ExactSum`]), and `n` and `L` are integers, so they do not depend
 //! on the order in which samples were added: a render of sample indices `[0, a)` and one of
 //! `[a, b)` have sums that add up to those of one render of `[0, b)`, bit for bit. Every sample
 //! depends only on (scene, settings, seed, pixel, sample index) — the samplers index their
