@@ -106,7 +106,7 @@ pub struct PathReuse {
 pub struct LightTracing {
     /// Camera samples per light path: one camera sample in this many (1 or more) also traces a
     /// light path, and the caustic paths both strategies find are weighted for that rate
-    /// ([`crate::caustic_mis`]). Fewer light paths cost less and leave the caustics noisier.
+    /// (`caustic_mis`). Fewer light paths cost less and leave the caustics noisier.
     pub samples_per_path: u32,
 }
 
