@@ -169,7 +169,8 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
             settings.skip_null_vertices,
         ) && !settings.hide_emitters;
         // `auto` traces caustics from the lights wherever that applies, unless the user pinned
-        // path reuse (the two exclude each other); its pilot may find that switching it off pays.
+        // path reuse (the two exclude each other); its pilot may find that switching it off, or
+        // tracing fewer light paths, pays.
         let reuse_pinned = matches!(args.path_reuse, Some(ReuseFlag::Block(_)));
         settings.light_tracing = match args.light_tracing {
             Some(samples_per_path) => Some(LightTracing { samples_per_path }),
@@ -199,6 +200,9 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
                 light_tracing: None,
                 ..*settings
             };
+            // Light tracing `auto` put in the base, not one the user asked for.
+            let tries_light_tracing =
+                settings.light_tracing.is_some() && args.light_tracing.is_none();
             trials = Trials {
                 ris: many_lights,
                 uniform_lights: many_lights,
@@ -209,9 +213,8 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
                         .russian_roulette
                         .zip(settings.max_depth)
                         .is_some_and(|(rr, depth)| depth > rr.start_depth),
-                no_light_tracing: settings.light_tracing.is_some() && args.light_tracing.is_none(),
-                sparse_light_paths: settings.light_tracing.is_some()
-                    && args.light_tracing.is_none(),
+                no_light_tracing: tries_light_tracing,
+                sparse_light_paths: tries_light_tracing,
                 path_reuse: args.path_reuse.is_none()
                     && args.light_tracing.is_none()
                     && !features.has_motion
