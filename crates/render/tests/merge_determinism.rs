@@ -62,7 +62,8 @@ const FIREFLY_SCENE: &str = r#"<scene version="3.0.0">
 </scene>
 "#;
 
-/// For `auto` with light tracing (the glass box), `auto` with path reuse (the Cornell box),
+/// For `auto` with light tracing (the glass box), `mis` with one light path per four samples
+/// (the glass box), `auto` with path reuse (the Cornell box),
 /// `mis` with a stratified and a Sobol pattern, and [`FIREFLY_SCENE`]: three pieces 0..2, 2..5,
 /// 5..7 of a 7-spp render, rendered with 1 or 2 threads, merged in two orders and by merging a
 /// merge, are byte for byte the file the single `--spp 7` render writes (itself at 1 or 2
@@ -72,11 +73,17 @@ fn pieces_merge_into_the_single_render_byte_for_byte() {
     let dir = tempfile::tempdir().unwrap();
     let fireflies = dir.path().join("fireflies.xml");
     std::fs::write(&fireflies, FIREFLY_SCENE).unwrap();
-    let cases: [(&str, &[&str], Option<&str>); 5] = [
+    let cases: [(&str, &[&str], Option<&str>); 6] = [
         (
             "cbox-glass.xml",
             &["--integrator", "auto"],
             Some("light-tracing-caustics"),
+        ),
+        // One light path per four samples: the pieces split the period (0..2, 2..5, 5..7).
+        (
+            "cbox-glass.xml",
+            &["--integrator", "mis", "--light-tracing", "4"],
+            Some("light-tracing-caustics-1-per-4"),
         ),
         (
             "cbox.xml",
