@@ -39,6 +39,7 @@
 //!
 //! **When `auto` uses it.** Wherever it uses light tracing.
 
+use crate::caster_cones::CasterCones;
 use glam::Vec3;
 use sampling::distribution::CdfTable;
 use std::f32::consts::FRAC_1_PI;
@@ -55,22 +56,24 @@ pub(crate) enum CausticPaths {
     /// `auto`'s pilot estimates their variance apart.
     Left,
     /// Shared with the light tracer: one bounce from the camera by the weights of this module,
-    /// longer ones left to it whole.
-    Shared(LightPathStarts),
+    /// longer ones left to it whole (boxed: the path tracer reads it only at a caustic's end).
+    Shared(Box<LightPathStarts>),
 }
 
 impl CausticPaths {
     /// The path tracer's share of the emission of `world`'s light `light` met at `hit` at the
-    /// end of a caustic chain: 1 − [`LightPathStarts::light_tracer_weight`] for a caustic one
-    /// bounce from the camera (`through_deltas`: every bounce after the first by a delta lobe;
-    /// `camera_side` as [`camera_side`] gives it for the path's first vertex), else 0 or 1 as
-    /// the variant says.
+    /// end of a caustic chain, reached along `dir`: 1 − [`LightPathStarts::light_tracer_weight`]
+    /// for a caustic one bounce from the camera (`through_deltas`: every bounce after the first
+    /// by a delta lobe; `camera_side` as [`camera_side`] gives it for the path's first vertex),
+    /// else 0 or 1 as the variant says.
     #[inline]
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn share(
         &self,
         world: &World,
         light: u32,
         hit: &geometry::Hit,
+        dir: Vec3,
         through_deltas: bool,
         camera_side: f32,
     ) -> f32 {
@@ -79,7 +82,7 @@ impl CausticPaths {
             CausticPaths::Left => 0.0,
             CausticPaths::Shared(_) if !through_deltas => 0.0,
             CausticPaths::Shared(starts) => {
-                let light_side = starts.density_at(world, light, hit.ng, hit.time);
+                let light_side = starts.density_at(world, light, (hit.p, hit.ng, -dir), hit.time);
                 1.0 - starts.light_tracer_weight(light_side, camera_side)
             }
         }
@@ -98,6 +101,8 @@ pub(crate) struct LightPathStarts {
     pmf_by_light: Box<[f32]>,
     /// Light paths traced per camera sample, ρ.
     paths_per_sample: f32,
+    /// Where light paths aim besides the cosine distribution; `None` without casters.
+    casters: Option<CasterCones>,
 }
 
 impl LightPathStarts {
@@ -121,6 +126,7 @@ impl LightPathStarts {
             selection,
             pmf_by_light,
             paths_per_sample,
+            casters: CasterCones::new(world),
         })
     }
 
@@ -136,16 +142,39 @@ impl LightPathStarts {
         self.lights.len() > 1
     }
 
-    /// The light tracer's density of a path's start at the point of `world`'s light `light` with
-    /// geometric normal `n_light` at `time`: the light's probability times its density per unit
-    /// area (m⁻²).
+    /// The light tracer's density of a path's start at the point `p_light` of `world`'s light
+    /// `light` with geometric normal `n_light` at `time`, leaving along `w`: the light's
+    /// probability times its density per unit area (m⁻²) times the direction's density over the
+    /// cosine distribution's ([`Self::aim`]).
     #[inline]
-    pub(crate) fn density_at(&self, world: &World, light: u32, n_light: Vec3, time: f32) -> f32 {
+    pub(crate) fn density_at(
+        &self,
+        world: &World,
+        light: u32,
+        (p_light, n_light, w): (Vec3, Vec3, Vec3),
+        time: f32,
+    ) -> f32 {
         let pmf = self.pmf_by_light[light as usize];
         if pmf == 0.0 {
             return 0.0;
         }
-        pmf * world.lights()[light as usize].pdf_emission_area(n_light, time)
+        let area = world.lights()[light as usize].pdf_emission_area(n_light, time);
+        pmf * area * self.aim(p_light, n_light, w)
+    }
+
+    /// The density of a light path's direction `w` from `p_light` (normal `n_light`) over the
+    /// cosine distribution's ([`CasterCones::relative_density`]); 1 without casters.
+    #[inline]
+    pub(crate) fn aim(&self, p_light: Vec3, n_light: Vec3, w: Vec3) -> f32 {
+        self.casters
+            .as_ref()
+            .map_or(1.0, |casters| casters.relative_density(p_light, n_light, w))
+    }
+
+    /// The casters light paths aim at, if any.
+    #[inline]
+    pub(crate) fn casters(&self) -> Option<&CasterCones> {
+        self.casters.as_ref()
     }
 
     /// The light tracer's weight w_LT for a caustic path whose light side is `light_side` (from
@@ -211,6 +240,7 @@ mod tests {
             selection: CdfTable::new(&[1.0]).expect("one weight"),
             pmf_by_light: Box::new([1.0]),
             paths_per_sample,
+            casters: None,
         };
         let pi = std::f32::consts::PI;
         // Equal densities per path: one path per sample shares, one per four gives the light

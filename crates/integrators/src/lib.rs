@@ -2,6 +2,7 @@
 //! configuration is tested against) and the path tracer with every variance-reduction technique
 //! as a switch.
 
+mod caster_cones;
 mod caustic_mis;
 mod direct;
 mod light_selection;

@@ -40,6 +40,7 @@
 //! thin-lens camera), the BSDF lobe (1D, when some material chooses a lobe) and direction (2D),
 //! and roulette (1D, with roulette from its start depth on).
 
+use crate::caster_cones::CasterCones;
 use crate::caustic_mis::{LightPathStarts, camera_side, density_ratio};
 use crate::optional_draw::next_1d_if;
 use crate::{PathSettings, RussianRoulette};
@@ -146,18 +147,37 @@ impl LightTracer {
         let u_dir = sampler.next_2d();
         let (chosen, pmf) = self.starts.sample(u_choice);
         let light = &world.lights()[chosen as usize];
-        let Some(emitted) = light.sample_emission(u_point, u_dir, time) else {
+        // The direction: cosine-distributed, or with casters, aimed at one part of the time.
+        let (cosine, u_x) = match self.starts.casters() {
+            Some(_) => CasterCones::cosine_part(u_dir.x),
+            None => (true, u_dir.x),
+        };
+        let u_dir = Vec2::new(u_x, u_dir.y);
+        let Some(mut emitted) = light.sample_emission(u_point, u_dir, time) else {
             return;
         };
+        if let (false, Some(casters)) = (cosine, self.starts.casters()) {
+            let Some(dir) = casters.sample(emitted.p, u_dir) else {
+                return;
+            };
+            emitted.dir = dir;
+        }
+        // Lambertian emission's weight is for the cosine distribution; `aim` is the drawn
+        // direction's density over it (0 behind the emitter).
+        let aim = self.starts.aim(emitted.p, emitted.n, emitted.dir);
+        if aim <= 0.0 {
+            return;
+        }
         // The light the path carries is `emitted_weight * throughput`.
-        let emitted_weight = emitted.weight / pmf;
+        let emitted_weight = emitted.weight / (pmf * aim);
         let mut throughput = Vec3::ONE;
         // While every bounce so far was by a delta lobe, a connection makes a caustic path one
         // bounce from the camera, weighted against the path tracer's (`caustic_mis`) with the
         // light side of the densities' ratio.
-        let light_side = self
-            .weighs_caustics
-            .then(|| self.starts.density_at(world, chosen, emitted.n, time));
+        let light_side = self.weighs_caustics.then(|| {
+            let start = (emitted.p, emitted.n, emitted.dir);
+            self.starts.density_at(world, chosen, start, time)
+        });
         let mut through_deltas = true;
         let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.p_error, emitted.dir).at_time(time);
         // The vertex about to be found, counted from the light (1 = the first hit). A connection

@@ -204,6 +204,16 @@ impl World {
         &self.materials
     }
 
+    /// The static shapes' world-space bounds with their materials, in shape order (moving
+    /// shapes left out).
+    pub fn static_shape_materials(&self) -> impl Iterator<Item = (geometry::Aabb, &Bsdf)> + '_ {
+        self.accel
+            .shapes()
+            .iter()
+            .zip(&self.shape_material)
+            .map(|(shape, &material)| (shape.bounds(), &self.materials[material as usize]))
+    }
+
     /// Gives materials textures, one entry per material (`None` for a plain one); an error when
     /// the count differs, a checkerboard's `odd` material is out of range or textured itself, or
     /// a textured diffuse reflectance belongs to a BSDF without one (see

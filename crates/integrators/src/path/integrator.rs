@@ -81,7 +81,9 @@ impl PathIntegrator {
                 .map(|tracing| LightPathStarts::new(world, tracing.paths_per_sample()))
             {
                 None => CausticPaths::Kept,
-                Some(Some(starts)) if settings.sample_bsdf => CausticPaths::Shared(starts),
+                Some(Some(starts)) if settings.sample_bsdf => {
+                    CausticPaths::Shared(Box::new(starts))
+                }
                 Some(_) => CausticPaths::Left,
             },
         }

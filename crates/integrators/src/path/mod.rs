@@ -82,6 +82,7 @@ impl PathIntegrator {
                     world,
                     light,
                     &surface.hit,
+                    ray.dir,
                     path.through_deltas,
                     path.camera_side,
                 ),
