@@ -142,12 +142,25 @@ fn light_traced_caustics_agree_with_the_path_tracer() {
 #[test]
 fn light_traced_caustics_agree_with_the_path_tracer_through_a_thin_lens() {
     let dir = tempfile::tempdir().expect("temporary directory");
-    let xml = SCENE.replace(
-        r#"<sensor type="perspective">"#,
-        r#"<sensor type="thinlens">
+    // The light faces up and emits down, from its flipped side: the path tracer meets its
+    // emission against its geometric normal, and both sides must take the emitting one.
+    let xml = SCENE
+        .replace(
+            r#"<sensor type="perspective">"#,
+            r#"<sensor type="thinlens">
         <float name="aperture_radius" value="0.2"/>
         <float name="focus_distance" value="0.6"/>"#,
-    );
+        )
+        .replace(
+            r#"<rotate x="1" angle="90"/>
+            <translate y="0.99"/>
+        </transform>"#,
+            r#"<rotate x="1" angle="-90"/>
+            <translate y="0.99"/>
+        </transform>
+        <boolean name="flip_normals" value="true"/>"#,
+        );
+    assert!(xml.contains("flip_normals\" value=\"true\"/>\n        <emitter"));
     let scene = load_xml(dir.path(), "thin-lens", &xml, SIZE);
     assert!(scene.camera.has_lens());
     let mis = mis_power(common::max_depth(&scene), false);
