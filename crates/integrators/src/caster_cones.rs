@@ -186,10 +186,10 @@ impl CasterCones {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use sampling::chi2::{Chi2Config, Chi2Domain, chi2_test};
+    use sampling::chi2::{Chi2Config, Chi2Domain, chi2_test, integrate_pdf};
 
-    /// Estimates ∫ p(ω) dω over the sphere by uniform directions: a density must integrate to the
-    /// probability of drawing a direction at all.
+    /// ∫ p(ω) dω over the sphere by the chi-square harness's cubature: a density must integrate
+    /// to the probability of drawing a direction at all.
     #[test]
     fn the_mixture_integrates_to_what_it_draws() {
         let cones = CasterCones {
@@ -199,20 +199,8 @@ mod tests {
             ]),
         };
         let (y, n) = (Vec3::ZERO, Vec3::Y);
-        // Both cones are drawn from y, so all mass is drawn: ∫ p = 1. Stratified uniform
-        // directions on the sphere, 4π · mean of p.
-        let steps = 800;
-        let mut sum = 0.0f64;
-        for i in 0..steps {
-            for j in 0..steps {
-                let z = 1.0 - 2.0 * (i as f32 + 0.5) / steps as f32;
-                let phi = TAU * (j as f32 + 0.5) / steps as f32;
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let w = Vec3::new(r * phi.cos(), z, r * phi.sin());
-                sum += f64::from(cones.density(y, n, w));
-            }
-        }
-        let integral = 4.0 * std::f64::consts::PI * sum / f64::from(steps * steps);
+        // Both cones are drawn from y, so all mass is drawn: ∫ p = 1.
+        let integral = integrate_pdf(Chi2Domain::Sphere, |w| cones.density(y, n, w), 32);
         assert!((integral - 1.0).abs() < 0.01, "∫ p = {integral}");
     }
 
