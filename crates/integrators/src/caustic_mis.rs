@@ -154,12 +154,27 @@ impl LightPathStarts {
         (p_light, n_light, w): (Vec3, Vec3, Vec3),
         time: f32,
     ) -> f32 {
+        let aim = self.aim(p_light, n_light, w);
+        self.density_aimed(world, light, n_light, time, aim)
+    }
+
+    /// [`Self::density_at`] for a start whose direction's density over the cosine
+    /// distribution's is `aim` (from [`Self::aim`]), for a caller that has it already.
+    #[inline]
+    pub(crate) fn density_aimed(
+        &self,
+        world: &World,
+        light: u32,
+        n_light: Vec3,
+        time: f32,
+        aim: f32,
+    ) -> f32 {
         let pmf = self.pmf_by_light[light as usize];
         if pmf == 0.0 {
             return 0.0;
         }
         let area = world.lights()[light as usize].pdf_emission_area(n_light, time);
-        pmf * area * self.aim(p_light, n_light, w)
+        pmf * area * aim
     }
 
     /// The density of a light path's direction `w` from `p_light` (normal `n_light`) over the

@@ -175,8 +175,8 @@ impl LightTracer {
         // bounce from the camera, weighted against the path tracer's (`caustic_mis`) with the
         // light side of the densities' ratio.
         let light_side = self.weighs_caustics.then(|| {
-            let start = (emitted.p, emitted.n, emitted.dir);
-            self.starts.density_at(world, chosen, start, time)
+            self.starts
+                .density_aimed(world, chosen, emitted.n, time, aim)
         });
         let mut through_deltas = true;
         let mut ray = Ray::spawn(emitted.p, emitted.n, emitted.p_error, emitted.dir).at_time(time);

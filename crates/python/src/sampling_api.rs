@@ -148,7 +148,7 @@ impl Domain {
                 let p = warp::sample_concentric_disk(u);
                 [p.x, p.y, 0.0]
             }
-            Self::UniformCone(cos_max) => warp::sample_uniform_cone(u, cos_max).to_array(),
+            Self::UniformCone(cos_max) => warp::sample_uniform_cone(u, 1.0 - cos_max).to_array(),
             Self::UniformTriangle(_) => warp::sample_uniform_triangle(u).to_array(),
         }
     }
@@ -161,7 +161,7 @@ impl Domain {
             Self::CosineHemisphere => warp::cosine_hemisphere_pdf(p[2]),
             Self::UniformSphere => warp::uniform_sphere_pdf(),
             Self::ConcentricDisk if p[0] * p[0] + p[1] * p[1] <= 1.0 => warp::concentric_disk_pdf(),
-            Self::UniformCone(cos_max) if p[2] >= cos_max => warp::uniform_cone_pdf(cos_max),
+            Self::UniformCone(cos_max) if p[2] >= cos_max => warp::uniform_cone_pdf(1.0 - cos_max),
             Self::UniformTriangle(area) if p.iter().all(|&b| b >= 0.0) => {
                 warp::uniform_triangle_pdf(area)
             }
@@ -177,7 +177,7 @@ impl Domain {
             Self::CosineHemisphere => warp::invert_cosine_hemisphere(w),
             Self::UniformSphere => warp::invert_uniform_sphere(w),
             Self::ConcentricDisk => warp::invert_concentric_disk(Vec2::new(p[0], p[1])),
-            Self::UniformCone(cos_max) => warp::invert_uniform_cone(w, cos_max),
+            Self::UniformCone(cos_max) => warp::invert_uniform_cone(w, 1.0 - cos_max),
             Self::UniformTriangle(_) => warp::invert_uniform_triangle(w),
         }
     }

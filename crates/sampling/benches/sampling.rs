@@ -50,7 +50,7 @@ fn warps(c: &mut Criterion) {
     bench_warp(c, "warp/uniform_sphere", sample_uniform_sphere);
     bench_warp(c, "warp/concentric_disk", sample_concentric_disk);
     bench_warp(c, "warp/uniform_triangle", sample_uniform_triangle);
-    bench_warp(c, "warp/uniform_cone", |u| sample_uniform_cone(u, 0.9));
+    bench_warp(c, "warp/uniform_cone", |u| sample_uniform_cone(u, 0.1));
     bench_warp(c, "warp/invert_cosine_hemisphere", |u| {
         invert_cosine_hemisphere(Vec3::new(u.x - 0.5, u.y - 0.5, 0.5).normalize())
     });

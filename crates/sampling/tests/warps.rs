@@ -28,15 +28,15 @@ struct DirectionWarp {
 fn cone(cos_theta_max: f32) -> DirectionWarp {
     DirectionWarp {
         name: format!("uniform cone, cos θ_max = {cos_theta_max}"),
-        sample: Box::new(move |u| sample_uniform_cone(u, cos_theta_max)),
+        sample: Box::new(move |u| sample_uniform_cone(u, 1.0 - cos_theta_max)),
         pdf: Box::new(move |w| {
             if w.z >= cos_theta_max {
-                uniform_cone_pdf(cos_theta_max)
+                uniform_cone_pdf(1.0 - cos_theta_max)
             } else {
                 0.0
             }
         }),
-        invert: Box::new(move |w| invert_uniform_cone(w, cos_theta_max)),
+        invert: Box::new(move |w| invert_uniform_cone(w, 1.0 - cos_theta_max)),
         contains: Box::new(move |w| w.z >= cos_theta_max - 1e-6),
     }
 }
@@ -273,7 +273,8 @@ proptest! {
         prop_assert!((invert_uniform_hemisphere(sample_uniform_hemisphere(u)).x - u.x).abs() < 1e-6);
         prop_assert!((invert_cosine_hemisphere(sample_cosine_hemisphere(u)).x - u.x).abs() < 1e-5);
         prop_assert!((invert_uniform_sphere(sample_uniform_sphere(u)).x - u.x).abs() < 1e-5);
-        let cone_back = invert_uniform_cone(sample_uniform_cone(u, cos_max), cos_max);
+        let gap = 1.0 - cos_max;
+        let cone_back = invert_uniform_cone(sample_uniform_cone(u, gap), gap);
         prop_assert!((cone_back.x - u.x).abs() < 2e-4, "cone {cos_max} at {u}: {cone_back}");
 
         let p = sample_concentric_disk(u);
@@ -296,6 +297,31 @@ fn narrow_cone_pdfs_integrate_to_one() {
             (integral - 1.0).abs() < 0.01,
             "cos θ_max {cos_max}: {integral}"
         );
+    }
+}
+
+/// Cones far narrower than `f32` resolves as cos θ_max (a sphere of radius 10⁻⁴ seen from 10
+/// units: 1 − cos θ_max = 5·10⁻¹¹) still sample over their whole angle, stay inside it, and
+/// invert: the warp takes 1 − cos θ_max, never forming cos θ_max.
+#[test]
+fn very_narrow_cones_sample_and_invert() {
+    for one_minus_cos_max in [5e-11_f32, 1e-7, 1e-4] {
+        let sin2_max = one_minus_cos_max * (2.0 - one_minus_cos_max);
+        for (i, &x) in [0.0_f32, 0.25, 0.5, 0.999].iter().enumerate() {
+            let u = Vec2::new(x, 0.1 + 0.2 * i as f32);
+            let w = sample_uniform_cone(u, one_minus_cos_max);
+            let sin2 = w.x * w.x + w.y * w.y;
+            // The drawn sin²θ is u.x of the cone's (1 − cos θ grows linearly in u.x).
+            assert!(
+                (sin2 - x * sin2_max).abs() <= 1e-3 * sin2_max,
+                "1 − cos θ_max = {one_minus_cos_max}, u = {u}: sin²θ {sin2} of {sin2_max}"
+            );
+            let back = invert_uniform_cone(w, one_minus_cos_max);
+            assert!(
+                (back.x - x).abs() < 1e-3,
+                "1 − cos θ_max = {one_minus_cos_max}, u = {u}: inverted to {back}"
+            );
+        }
     }
 }
 
