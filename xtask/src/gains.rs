@@ -126,6 +126,7 @@ impl Subject {
             light_tracing: None,
             direct_samples: None,
             skip_null_vertices: self.scene.desc.integrator.skip_null_vertices,
+            delta_splitting: false,
             path_reuse: None,
         }
     }

@@ -84,6 +84,10 @@ pub struct PathSettings {
     /// with other noise. Light tracing does not know the rule and must be off where null lobes
     /// are.
     pub skip_null_vertices: bool,
+    /// Delta splitting ([`crate::path`]'s `delta_splitting`): at vertices seen from the camera
+    /// through delta bounces only, the emission seen through every delta lobe of a BSDF that
+    /// chooses among lobes (glass, smooth plastic), one ray per lobe not chosen.
+    pub delta_splitting: bool,
     /// Path reuse (see [`PathReuse`]), `None` for off. Only with BSDF sampling, a `max_depth`
     /// of at least 3, roulette from depth 2 or later, and neither light tracing,
     /// `direct_samples` nor `skip_null_vertices` (see [`PathSettings::reuse_applies`]).
@@ -145,6 +149,7 @@ impl Default for PathSettings {
             light_tracing: None,
             direct_samples: None,
             skip_null_vertices: false,
+            delta_splitting: false,
             path_reuse: None,
         }
     }
@@ -200,6 +205,9 @@ impl PathSettings {
                 1 => "light-tracing-caustics".to_string(),
                 n => format!("light-tracing-caustics-1-per-{n}"),
             });
+        }
+        if self.delta_splitting {
+            names.push("delta-splitting".to_string());
         }
         if let Some(PathReuse { block }) = self.path_reuse {
             names.push(format!("path-reuse-{block}x{block}"));

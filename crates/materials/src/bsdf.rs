@@ -43,6 +43,9 @@ pub struct BsdfSample {
     pub eta: f32,
 }
 
+/// The delta lobes a BSDF chooses among ([`Bsdf::delta_lobes`]): up to two samples.
+pub type DeltaLobes = [Option<BsdfSample>; 2];
+
 /// What each BSDF of the set provides, with one signature for all, so that [`Bsdf`]'s methods
 /// can forward to it (see `bsdf_set!`). The defaults fit a BSDF made of delta lobes only, which
 /// `eval` and `pdf_solid_angle` never see, and one without a diffuse albedo to replace.
@@ -77,6 +80,11 @@ pub(crate) trait Model {
     /// [`Bsdf::sample_delta`].
     fn sample_delta(&self, _wo: Vec3, _u_lobe: f32) -> Option<BsdfSample> {
         None
+    }
+
+    /// [`Bsdf::delta_lobes`].
+    fn delta_lobes(&self, _wo: Vec3) -> DeltaLobes {
+        [None, None]
     }
 
     /// [`Bsdf::with_diffuse_reflectance`].
@@ -172,6 +180,19 @@ macro_rules! bsdf_set {
             pub fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
                 match self {
                     $(Self::$variant(b) => Model::sample_delta(b, wo, u_lobe),)*
+                }
+            }
+
+            /// Each delta lobe among which [`Self::sample`] chooses, as the sample it gives when
+            /// it chooses that lobe (`pdf_solid_angle` the probability of the choice, so that
+            /// `f · |cos θi|` is the lobe's whole throughput): a [`Dielectric`]'s reflection and
+            /// refraction, a [`Plastic`]'s specular coat. None for BSDFs that choose no delta
+            /// lobe against another lobe (a mirror's one lobe is always taken), and for blends
+            /// and thin dielectrics, which leave the choice to `sample`. At most one lobe per
+            /// side of the surface. A [`TwoSided`] gives the side `wo` sees.
+            pub fn delta_lobes(&self, wo: Vec3) -> DeltaLobes {
+                match self {
+                    $(Self::$variant(b) => Model::delta_lobes(b, wo),)*
                 }
             }
 

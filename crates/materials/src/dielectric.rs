@@ -1,7 +1,7 @@
 //! Mitsuba's `dielectric`: a smooth interface between two dielectrics (glass, water), which
 //! reflects and refracts by the exact unpolarised Fresnel equations.
 
-use crate::bsdf::{BsdfSample, Model};
+use crate::bsdf::{BsdfSample, DeltaLobes, Model};
 use crate::error::{MaterialError, relative_ior};
 use crate::flags::BsdfFlags;
 use crate::fresnel::{fresnel_dielectric, reflect, refract};
@@ -98,6 +98,20 @@ impl Model for Dielectric {
 
     fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
         Dielectric::sample(self, wo, u_lobe)
+    }
+
+    fn delta_lobes(&self, wo: Vec3) -> DeltaLobes {
+        // `sample` reflects for u_lobe below the reflectance R and refracts above it.
+        let r = fresnel_dielectric(wo.z, self.eta).reflectance;
+        let refracts = r < 1.0;
+        [
+            (r > 0.0)
+                .then(|| Dielectric::sample(self, wo, 0.0))
+                .flatten(),
+            refracts
+                .then(|| Dielectric::sample(self, wo, r.max(0.0)))
+                .flatten(),
+        ]
     }
 
     fn albedo_hint(&self) -> Vec3 {

@@ -51,7 +51,7 @@ mod two_sided;
 
 pub use bitmap::{BitmapTexture, TextureFilter, TextureWrap};
 pub use blend::Blend;
-pub use bsdf::{Bsdf, BsdfSample};
+pub use bsdf::{Bsdf, BsdfSample, DeltaLobes};
 pub use bump_map::BumpMap;
 pub use conductor::Conductor;
 pub use dielectric::Dielectric;

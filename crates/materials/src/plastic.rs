@@ -2,7 +2,7 @@
 //! by default), which reflects specularly by Fresnel and lets the rest reach the base, whose
 //! light leaves through the coating after any number of internal reflections.
 
-use crate::bsdf::{Bsdf, BsdfSample, Model};
+use crate::bsdf::{Bsdf, BsdfSample, DeltaLobes, Model};
 use crate::error::{MaterialError, relative_ior};
 use crate::flags::BsdfFlags;
 use crate::fresnel::{diffuse_fresnel_reflectance, fresnel_dielectric, reflect};
@@ -249,6 +249,16 @@ impl Model for Plastic {
 
     fn sample_delta(&self, wo: Vec3, _u_lobe: f32) -> Option<BsdfSample> {
         self.sample_specular(wo)
+    }
+
+    fn delta_lobes(&self, wo: Vec3) -> DeltaLobes {
+        if wo.z <= 0.0 {
+            return [None, None];
+        }
+        let fresnel_o = self.fresnel(wo.z);
+        let probability = self.specular_probability(fresnel_o);
+        let coat = (probability > 0.0).then(|| self.specular_sample(wo, fresnel_o, probability));
+        [coat, None]
     }
 
     fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Bsdf> {

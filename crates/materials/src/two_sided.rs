@@ -1,7 +1,7 @@
 //! Mitsuba's `twosided`: one-sided reflecting BSDFs on both sides of a surface, the same one or
 //! a different one per side.
 
-use crate::bsdf::{Bsdf, BsdfSample, Model};
+use crate::bsdf::{Bsdf, BsdfSample, DeltaLobes, Model};
 use crate::error::MaterialError;
 use crate::flags::BsdfFlags;
 use glam::{Vec2, Vec3};
@@ -152,6 +152,16 @@ impl Model for TwoSided {
 
     fn sample_delta(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
         TwoSided::sample_delta(self, wo, u_lobe)
+    }
+
+    fn delta_lobes(&self, wo: Vec3) -> DeltaLobes {
+        let (bsdf, mirrored) = self.facing(wo);
+        bsdf.delta_lobes(mirror_if(wo, mirrored)).map(|lobe| {
+            lobe.map(|mut sample| {
+                sample.wi = mirror_if(sample.wi, mirrored);
+                sample
+            })
+        })
     }
 
     fn with_diffuse_reflectance(&self, reflectance: Vec3) -> Option<Bsdf> {

@@ -276,3 +276,44 @@ fn invalid_indices_are_errors() {
     .expect("Mitsuba's defaults are valid");
     assert!((defaults.eta() - 1.5046 / 1.000_277).abs() < 1e-6);
 }
+
+/// `delta_lobes` lists the lobes `sample` chooses among, as `sample` gives them: reflection with
+/// probability R and refraction with 1 − R (their probabilities sum to one), one on each side;
+/// beyond the critical angle only the reflection, with probability 1; each equal to what
+/// `sample` returns at a lobe choice that selects it.
+#[test]
+fn delta_lobes_are_the_lobes_sample_chooses_among() {
+    let bsdf = glass(1.5);
+    for (degrees, inside) in [
+        (0.0, false),
+        (30.0, false),
+        (80.0, false),
+        (20.0, true),
+        (60.0, true),
+    ] {
+        let wo = direction(degrees, inside);
+        let lobes: Vec<BsdfSample> = bsdf.delta_lobes(wo).into_iter().flatten().collect();
+        let total: f32 = lobes.iter().map(|l| l.pdf_solid_angle).sum();
+        assert!(
+            (total - 1.0).abs() < 1e-5,
+            "{degrees}° inside {inside}: probabilities {total}"
+        );
+        let r = fresnel_dielectric(wo.z, 1.5).reflectance;
+        let expected = if r < 1.0 { 2 } else { 1 };
+        assert_eq!(
+            lobes.len(),
+            expected,
+            "{degrees}° inside {inside}: {lobes:?}"
+        );
+        let reflection = lobes
+            .iter()
+            .find(|l| is_reflection(wo, l))
+            .expect("a reflection");
+        assert!((reflection.pdf_solid_angle - r).abs() < 1e-6);
+        assert_eq!(Some(*reflection), bsdf.sample(wo, 0.5 * r, Vec2::ZERO));
+        if let Some(refraction) = lobes.iter().find(|l| !is_reflection(wo, l)) {
+            let u = r + 0.5 * (1.0 - r);
+            assert_eq!(Some(*refraction), bsdf.sample(wo, u, Vec2::ZERO));
+        }
+    }
+}

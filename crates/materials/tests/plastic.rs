@@ -258,3 +258,29 @@ fn invalid_indices_are_errors() {
         }
     }
 }
+
+/// `delta_lobes` gives the coat alone, as `sample` gives it when its lobe choice selects the
+/// coat, with the probability of that choice: `sample` takes the coat below it and the diffuse
+/// lobe above. Nothing from below the surface, where the plastic is black.
+#[test]
+fn delta_lobes_are_the_coat_with_its_choice_probability() {
+    let bsdf = plastic(1.49, Vec3::new(0.2, 0.3, 0.5), Vec3::ONE, false);
+    for degrees in [0.0_f32, 40.0, 85.0] {
+        let theta = degrees.to_radians();
+        let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
+        let [coat, none] = bsdf.delta_lobes(wo);
+        assert!(none.is_none());
+        let coat = coat.expect("a coat above the surface");
+        let p = coat.pdf_solid_angle;
+        assert!(p > 0.0 && p < 1.0, "{degrees}°: probability {p}");
+        assert_eq!(Some(coat), bsdf.sample(wo, 0.5 * p, Vec2::splat(0.3)));
+        let above = bsdf
+            .sample(wo, p + 0.5 * (1.0 - p), Vec2::splat(0.3))
+            .expect("diffuse");
+        assert!(
+            !above.is_delta,
+            "{degrees}°: the choice above {p} took a delta lobe"
+        );
+    }
+    assert_eq!(bsdf.delta_lobes(Vec3::new(0.0, 0.6, -0.8)), [None, None]);
+}

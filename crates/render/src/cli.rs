@@ -199,6 +199,12 @@ pub struct RenderArgs {
     #[arg(long, value_name = "N", num_args = 0..=1, default_missing_value = "1",
           value_parser = clap::value_parser!(u32).range(1..=64))]
     pub light_tracing: Option<u32>,
+    /// Delta splitting on or off: where the camera sees glass or a smooth plastic (directly or
+    /// through mirrors and glass), the light seen through each of its delta lobes by a ray of
+    /// its own, instead of through the one lobe a path chooses. `auto` turns it on where such
+    /// materials are; other presets only when asked.
+    #[arg(long, value_enum, value_name = "on|off", num_args = 0..=1, default_missing_value = "on")]
+    pub delta_splitting: Option<Switch>,
     /// Path reuse: connect each pixel's first path vertex to the second vertices of the other
     /// paths of its BLOCK × BLOCK pixel block (2 or 4; 4 when no value is given), where both
     /// are diffuse (not with light tracing). `auto` turns 4 × 4 blocks on where they pay;

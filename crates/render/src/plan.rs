@@ -130,6 +130,7 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
         light_tracing: None,
         direct_samples,
         skip_null_vertices,
+        delta_splitting: false,
         path_reuse: None,
     };
     let mis = PathSettings {
@@ -158,6 +159,9 @@ pub fn plan(args: &RenderArgs, desc: &SceneDesc, features: &SceneFeatures) -> Re
     }
     if let (Transport::Path(settings), Some(lights)) = (&mut transport, args.lights) {
         settings.light_selection = lights.selection();
+    }
+    if let (Transport::Path(settings), Some(splitting)) = (&mut transport, args.delta_splitting) {
+        settings.delta_splitting = splitting.is_on();
     }
     let is_auto = preset == IntegratorPreset::Auto;
     let mut trials = Trials::default();
@@ -303,6 +307,7 @@ pub fn auto_settings(mis: PathSettings, features: &SceneFeatures) -> PathSetting
             Mis::Off
         },
         light_selection,
+        delta_splitting: features.has_delta_lobe_choice,
         ..mis
     }
 }
@@ -348,6 +353,7 @@ mod tests {
             has_environment: environment,
             lights_left_to_bsdf: usize::from(environment),
             has_glossy_bsdfs: false,
+            has_delta_lobe_choice: false,
             has_null_lobes: false,
             has_diffuse_bsdfs: true,
             has_motion: false,

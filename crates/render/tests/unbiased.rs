@@ -196,6 +196,7 @@ fn changes_nothing(scene: &RenderScene, configuration: &Configuration) -> bool {
         "light tracing" => {
             LightTracer::new(&scene.world, settings, scene.camera.traits()).is_none()
         }
+        "delta splitting" => !scene.features.has_delta_lobe_choice,
         "mis power uniform selection" | "mis power every light" => {
             scene.features.lights_sampled_under_mis() <= 1
         }

@@ -102,6 +102,7 @@ impl SceneTransport {
             light_tracing: None,
             direct_samples: self.direct_samples,
             skip_null_vertices: self.skip_null_vertices,
+            delta_splitting: false,
             path_reuse: None,
         }
     }
@@ -326,6 +327,7 @@ mod tests {
             has_environment: false,
             lights_left_to_bsdf: 0,
             has_glossy_bsdfs: false,
+            has_delta_lobe_choice: false,
             has_null_lobes: false,
             has_diffuse_bsdfs: true,
             has_motion: false,

@@ -68,6 +68,7 @@ impl PathIntegrator {
         last: bool,
         sampler: &mut impl Sampler,
     ) -> Option<Ray> {
+        path.chosen_delta = None;
         let next = self.sample_direction(surface, wo, sampler)?;
         let passes_null = self.settings.skip_null_vertices && next.is_null;
         if last && !passes_null {

@@ -14,6 +14,7 @@
 //! the steps the scene can use switched on (see each step's file).
 
 mod bounce;
+mod delta_splitting;
 mod integrator;
 pub(crate) mod mis;
 pub(crate) mod nee;
@@ -90,7 +91,7 @@ impl PathIntegrator {
             };
             if !hidden && share > 0.0 {
                 let (previous, delta) = (&path.previous, path.seen_through_delta);
-                let throughput = path.throughput * share;
+                let throughput = path.throughput * (share * path.emission_scale);
                 path.radiance += self.emission_found(
                     world, surface, ray.dir, previous, delta, ONE_EACH, throughput,
                 );
@@ -128,7 +129,13 @@ impl PathIntegrator {
                 .flatten();
 
             // Sample the BSDF for the next direction, then Russian roulette.
+            let (throughput, splits) = (path.throughput, !last && self.splits_at(surface, &path));
             let next_ray = self.next_ray(&mut path, surface, &point, wo, last, sampler);
+
+            // Delta splitting: the emission seen through the delta lobes not chosen.
+            if splits {
+                self.split_delta_lobes(world, surface, &point, wo, throughput, &mut path, counters);
+            }
 
             // Trace next event estimation's shadow ray (after the bounce: see `nee.rs`).
             if let Some(direct) = shadowed.and_then(|light| light.unoccluded(world, counters)) {

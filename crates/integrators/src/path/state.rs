@@ -37,6 +37,13 @@ pub(super) struct PathState {
     /// camera's importance times |cos θ| towards the camera, from the first bounce on times
     /// that bounce's pdf / |cos θ| (0 where light tracing does not share caustics).
     pub camera_side: f32,
+    /// The direction (local frame) of the delta lobe the bounce at the current vertex chose,
+    /// `None` before it or after a non-delta one: what [delta splitting](super::delta_splitting)
+    /// does not trace again.
+    pub chosen_delta: Option<Vec3>,
+    /// The share of the emission met at the next vertex that the walk counts: the chosen delta
+    /// lobe's probability where delta splitting counted the others' emission, else 1.
+    pub emission_scale: f32,
     /// The number of the vertex the ray is about to find: one more per bounce, not per pass
     /// through a null lobe with `skip_null_vertices`.
     pub depth: u32,
@@ -61,6 +68,8 @@ impl PathState {
             caustic_chain: false,
             through_deltas: true,
             camera_side: 0.0,
+            chosen_delta: None,
+            emission_scale: 1.0,
             depth: 1,
         }
     }
@@ -71,6 +80,8 @@ impl PathState {
         self.throughput *= next.weight;
         self.eta_scale *= next.eta * next.eta;
         self.seen_through_delta &= next.is_delta;
+        self.chosen_delta = next.is_delta.then_some(next.wi);
+        self.emission_scale = 1.0;
         if self.depth == 1 {
             self.first_vertex_non_delta = !next.is_delta;
             self.camera_side *= next.pdf_solid_angle / next.wi.z.abs();

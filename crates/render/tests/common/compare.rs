@@ -204,6 +204,11 @@ impl Replicates {
         mean_and_variance(&self.unit_sums(&unit)).0 / f64::from(3 * self.width * self.height)
     }
 
+    /// The standard error of the replicate mean of the whole image's sum, relative to that mean.
+    pub fn image_relative_error(&self) -> f64 {
+        self.relative_error(&Unit::image(self.width, self.height))
+    }
+
     /// The standard error of the replicate mean of `unit`'s sum, relative to that mean.
     fn relative_error(&self, unit: &Unit) -> f64 {
         let (mean, variance) = mean_and_variance(&self.unit_sums(unit));

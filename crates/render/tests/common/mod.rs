@@ -200,6 +200,7 @@ pub fn mis_power(max_depth: Option<u32>, hide_emitters: bool) -> PathSettings {
         light_tracing: None,
         direct_samples: None,
         skip_null_vertices: false,
+        delta_splitting: false,
         path_reuse: None,
     }
 }
@@ -299,6 +300,13 @@ fn switches(base: PathSettings, sampler: SamplerKind) -> Vec<Configuration> {
             "light tracing",
             PathSettings {
                 light_tracing: Some(LightTracing::SPARSE),
+                ..base
+            },
+        ),
+        switch(
+            "delta splitting",
+            PathSettings {
+                delta_splitting: true,
                 ..base
             },
         ),
