@@ -26,8 +26,8 @@
 //! Le(ω_k). The variance of the choice is gone from the emission; a ray per unchosen lobe is
 //! its cost.
 //!
-//! **When `auto` uses it.** A trial of `auto`'s pilot where the scene has glass or smooth
-//! plastic, kept when measured more efficient.
+//! **When `auto` uses it.** In its base wherever some material chooses between a delta lobe
+//! and another (glass, smooth plastic); it costs a ray only where the camera sees one.
 
 use super::PathIntegrator;
 use super::mis::{ONE_EACH, PreviousVertex};
