@@ -58,8 +58,7 @@ fn scene_body() -> &'static str {
 }
 
 fn renders(splitting: bool, first_seed: u32) -> Replicates {
-    let dir = std::env::temp_dir().join(format!("strata-delta-splitting-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temporary directory");
+    let dir = tempfile::tempdir().expect("temporary directory");
     let xml = scene_xml(
         4,
         false,
@@ -68,7 +67,7 @@ fn renders(splitting: bool, first_seed: u32) -> Replicates {
         common::NEAR_CLIP,
         scene_body(),
     );
-    let scene = load_xml(&dir, "glass-and-plastic", &xml, SIZE);
+    let scene = load_xml(dir.path(), "glass-and-plastic", &xml, SIZE);
     let settings = PathSettings {
         delta_splitting: splitting,
         ..mis_power(Some(4), false)
