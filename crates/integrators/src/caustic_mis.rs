@@ -67,7 +67,6 @@ impl CausticPaths {
     /// by a delta lobe; `camera_side` as [`camera_side`] gives it for the path's first vertex),
     /// else 0 or 1 as the variant says.
     #[inline]
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn share(
         &self,
         world: &World,

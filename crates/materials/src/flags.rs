@@ -70,6 +70,13 @@ impl BsdfFlags {
     pub const fn is_delta(self) -> bool {
         !self.intersects(Self::SMOOTH)
     }
+
+    /// Whether `sample` chooses between a delta lobe and another lobe ([`Self::DELTA`] with
+    /// [`Self::LOBE_CHOICE`]: glass, a smooth plastic), where delta splitting applies.
+    #[inline]
+    pub const fn chooses_delta_lobe(self) -> bool {
+        self.contains(Self::DELTA.union(Self::LOBE_CHOICE))
+    }
 }
 
 impl BitOr for BsdfFlags {

@@ -24,8 +24,7 @@ pub struct SceneFeatures {
     /// with one on either side).
     pub has_delta_bsdfs: bool,
     /// True when some material chooses between a delta lobe and another lobe
-    /// ([`BsdfFlags::DELTA`] with [`BsdfFlags::LOBE_CHOICE`]: glass, smooth plastic), where
-    /// delta splitting applies.
+    /// ([`BsdfFlags::chooses_delta_lobe`]: glass, smooth plastic), where delta splitting applies.
     pub has_delta_lobe_choice: bool,
     /// True when some material has a null lobe ([`BsdfFlags::NULL`]: `null`, a mask, a thin
     /// dielectric), which Mitsuba's volumetric path tracers do not count as a path vertex.
@@ -71,10 +70,7 @@ impl SceneFeatures {
             has_glossy_bsdfs: materials
                 .iter()
                 .any(|m| m.flags().contains(BsdfFlags::GLOSSY)),
-            has_delta_lobe_choice: materials.iter().any(|m| {
-                m.flags()
-                    .contains(BsdfFlags::DELTA | BsdfFlags::LOBE_CHOICE)
-            }),
+            has_delta_lobe_choice: materials.iter().any(|m| m.flags().chooses_delta_lobe()),
             has_null_lobes: materials
                 .iter()
                 .any(|m| m.flags().contains(BsdfFlags::NULL)),

@@ -34,7 +34,6 @@ use super::mis::{ONE_EACH, PreviousVertex};
 use super::state::PathState;
 use geometry::SpawnPoint;
 use glam::Vec3;
-use materials::BsdfFlags;
 use world::{BsdfSlot, RayTally, SurfaceHit, World};
 
 impl PathIntegrator {
@@ -44,10 +43,7 @@ impl PathIntegrator {
     pub(super) fn splits_at(&self, surface: &SurfaceHit<'_>, path: &PathState) -> bool {
         self.settings.delta_splitting
             && path.seen_through_delta
-            && surface
-                .bsdf
-                .flags()
-                .contains(BsdfFlags::DELTA | BsdfFlags::LOBE_CHOICE)
+            && surface.bsdf.flags().chooses_delta_lobe()
     }
 
     /// The emission seen through the delta lobes of `surface` (whose point is `point`, seen
